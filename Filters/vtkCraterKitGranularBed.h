@@ -1,0 +1,86 @@
+/**
+ * @class vtkCraterKitGranularBed
+ * @brief Source: a granular bed of spheres in a box or hemispherical bowl.
+ *
+ * HCP lattice (packing fraction 0.7405) or random placement without overlaps
+ * (RCP before DEM settling); monodisperse, uniform or power-law radii.
+ * Thin adapter over craterkit::generateGranularBed (Solvers/bed/GranularBed.h).
+ * Output: one vertex per particle with the CraterKit point arrays, and field data
+ * recording the container and generation parameters and the measured bulk packing.
+ */
+#ifndef vtkCraterKitGranularBed_h
+#define vtkCraterKitGranularBed_h
+
+#include "CraterKitFiltersModule.h"
+#include <vtkPolyDataAlgorithm.h>
+
+class CRATERKITFILTERS_EXPORT vtkCraterKitGranularBed : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkCraterKitGranularBed* New();
+  vtkTypeMacro(vtkCraterKitGranularBed, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum PackingTypes { RCP = 0, HCP = 1 };
+  enum ContainerTypes { BOX = 0, BOWL = 1 };
+  enum SizeDistributions { MONODISPERSE = 0, UNIFORM = 1, POWER_LAW = 2 };
+
+  vtkSetClampMacro(Packing, int, RCP, HCP);
+  vtkGetMacro(Packing, int);
+  vtkSetClampMacro(Container, int, BOX, BOWL);
+  vtkGetMacro(Container, int);
+  // Lengths are validated by the solver, not clamped, so bad values get a clear error.
+  vtkSetMacro(ContainerRadius, double);
+  vtkGetMacro(ContainerRadius, double);
+  vtkSetVector3Macro(BoxSize, double);
+  vtkGetVector3Macro(BoxSize, double);
+  vtkSetMacro(SurfaceHeight, double);
+  vtkGetMacro(SurfaceHeight, double);
+  vtkSetClampMacro(SizeDistribution, int, MONODISPERSE, POWER_LAW);
+  vtkGetMacro(SizeDistribution, int);
+  vtkSetMacro(ParticleRadius, double);
+  vtkGetMacro(ParticleRadius, double);
+  vtkSetMacro(MinRadius, double);
+  vtkGetMacro(MinRadius, double);
+  vtkSetMacro(MaxRadius, double);
+  vtkGetMacro(MaxRadius, double);
+  vtkSetMacro(PowerLawExponent, double);
+  vtkGetMacro(PowerLawExponent, double);
+  vtkSetMacro(PackingFraction, double);
+  vtkGetMacro(PackingFraction, double);
+  vtkSetMacro(ParticleDensity, double);
+  vtkGetMacro(ParticleDensity, double);
+  vtkSetMacro(Material, int);
+  vtkGetMacro(Material, int);
+  vtkSetMacro(RandomSeed, int);
+  vtkGetMacro(RandomSeed, int);
+  vtkSetMacro(MaxParticles, int);
+  vtkGetMacro(MaxParticles, int);
+
+protected:
+  vtkCraterKitGranularBed();
+  ~vtkCraterKitGranularBed() override = default;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Packing = RCP;
+  int Container = BOWL;
+  double ContainerRadius = 15.0;
+  double BoxSize[3] = { 10.0, 10.0, 5.0 };
+  double SurfaceHeight = 0.0;
+  int SizeDistribution = MONODISPERSE;
+  double ParticleRadius = 0.5;
+  double MinRadius = 0.4;
+  double MaxRadius = 0.6;
+  double PowerLawExponent = 3.0;
+  double PackingFraction = 0.56;
+  double ParticleDensity = 2000.0;
+  int Material = 0;
+  int RandomSeed = 1;
+  int MaxParticles = 2000000;
+
+private:
+  vtkCraterKitGranularBed(const vtkCraterKitGranularBed&) = delete;
+  void operator=(const vtkCraterKitGranularBed&) = delete;
+};
+
+#endif

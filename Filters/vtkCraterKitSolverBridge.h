@@ -1,0 +1,128 @@
+// Conversions between CraterKit solver state and VTK data, and the one place where
+// solver exceptions become VTK errors. Private to the CraterKit::Filters module.
+#pragma once
+
+#include "common/Error.h"
+#include "common/ParticleSet.h"
+#include "common/Progress.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIntArray.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
+#include <vtkTypeInt64Array.h>
+
+#include <exception>
+#include <string>
+
+namespace craterkit {
+namespace bridge {
+
+inline vtkSmartPointer<vtkDoubleArray> doubleArray(const char* name, int components,
+                                                   const std::vector<double>& values) {
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / components));
+  std::copy(values.begin(), values.end(), array->GetPointer(0));
+  return array;
+}
+
+// Particles as vertices with the point arrays of ARCHITECTURE.md.
+inline void toPolyData(const ParticleSet& s, vtkPolyData* out) {
+  const vtkIdType n = static_cast<vtkIdType>(s.size());
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  std::copy(s.position.begin(), s.position.end(),
+            static_cast<double*>(points->GetData()->GetVoidPointer(0)));
+  out->SetPoints(points);
+
+  auto offsets = vtkSmartPointer<vtkTypeInt64Array>::New();
+  auto connectivity = vtkSmartPointer<vtkTypeInt64Array>::New();
+  offsets->SetNumberOfTuples(n + 1);
+  connectivity->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i) {
+    offsets->SetValue(i, i);
+    connectivity->SetValue(i, i);
+  }
+  offsets->SetValue(n, n);
+  auto verts = vtkSmartPointer<vtkCellArray>::New();
+  verts->SetData(offsets, connectivity);
+  out->SetVerts(verts);
+
+  vtkPointData* pd = out->GetPointData();
+  pd->AddArray(doubleArray("Velocity", 3, s.velocity));
+  pd->AddArray(doubleArray("AngularVelocity", 3, s.angularVelocity));
+  pd->AddArray(doubleArray("Radius", 1, s.radius));
+  pd->AddArray(doubleArray("Mass", 1, s.mass));
+  pd->AddArray(doubleArray("Density", 1, s.density));
+  auto material = vtkSmartPointer<vtkIntArray>::New();
+  material->SetName("Material");
+  material->SetNumberOfTuples(n);
+  std::copy(s.material.begin(), s.material.end(), material->GetPointer(0));
+  pd->AddArray(material);
+  auto ids = vtkSmartPointer<vtkTypeInt64Array>::New();
+  ids->SetName("Id");
+  ids->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i)
+    ids->SetValue(i, s.id[i]);
+  pd->AddArray(ids);
+  pd->SetActiveScalars("Radius");
+}
+
+inline void addField(vtkFieldData* fd, const char* name, double value) {
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(name);
+  array->InsertNextValue(value);
+  fd->AddArray(array);
+}
+
+inline void addField(vtkFieldData* fd, const char* name, const double* values, int count) {
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(count);
+  array->InsertNextTuple(values);
+  fd->AddArray(array);
+}
+
+inline void addField(vtkFieldData* fd, const char* name, const std::string& value) {
+  auto array = vtkSmartPointer<vtkStringArray>::New();
+  array->SetName(name);
+  array->InsertNextValue(value);
+  fd->AddArray(array);
+}
+
+// Progress in [lo, hi] of the algorithm's own range; abort when ParaView asks.
+inline ProgressCallback progressOf(vtkAlgorithm* self, double lo = 0.0, double hi = 1.0) {
+  return [self, lo, hi](double fraction) {
+    self->UpdateProgress(lo + (hi - lo) * fraction);
+    return self->GetAbortExecute() == 0;
+  };
+}
+
+// Runs a solver call; turns its exceptions into a VTK error naming the algorithm.
+template <class Call> bool run(vtkAlgorithm* self, Call&& call) {
+  try {
+    call();
+    return true;
+  } catch (const InputError& e) {
+    vtkErrorWithObjectMacro(self, << "invalid input: " << e.what());
+  } catch (const Aborted&) {
+    vtkWarningWithObjectMacro(self, << "aborted by the user; the output is empty");
+  } catch (const std::bad_alloc&) {
+    vtkErrorWithObjectMacro(self, << "out of memory: reduce the problem size");
+  } catch (const std::exception& e) {
+    vtkErrorWithObjectMacro(self, << "solver failure: " << e.what());
+  }
+  return false;
+}
+
+} // namespace bridge
+} // namespace craterkit

@@ -1,0 +1,20 @@
+# Fails if a file under Solvers/ includes a VTK or ParaView header: the numerics must
+# stay usable without VTK (ARCHITECTURE.md, layers).
+file(GLOB_RECURSE sources "${SOURCE_DIR}/Solvers/*.h" "${SOURCE_DIR}/Solvers/*.hpp"
+     "${SOURCE_DIR}/Solvers/*.cpp" "${SOURCE_DIR}/Solvers/*.cxx" "${SOURCE_DIR}/Solvers/*.txx")
+if(NOT sources)
+  message(FATAL_ERROR "no sources found under ${SOURCE_DIR}/Solvers")
+endif()
+set(offenders "")
+foreach(f IN LISTS sources)
+  file(STRINGS "${f}" hits REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](vtk|pq|vtkSM|paraview)")
+  if(hits)
+    list(APPEND offenders "${f}: ${hits}")
+  endif()
+endforeach()
+if(offenders)
+  string(REPLACE ";" "\n" offenders "${offenders}")
+  message(FATAL_ERROR "Solvers/ must not include VTK or ParaView headers:\n${offenders}")
+endif()
+list(LENGTH sources count)
+message(STATUS "${count} solver files checked: no VTK or ParaView includes")
