@@ -1,0 +1,57 @@
+"""CraterKit helpers for pvbatch and pvpython scripts.
+
+    from craterkit import load_plugin
+    simple = load_plugin()          # paraview.simple with the CraterKit proxies
+    bed = simple.GranularBed(Packing='HCP')
+
+Run scripts through scripts/pvbatch, which finds the plugin and sets up headless rendering.
+"""
+
+import glob
+import os
+
+__all__ = ["load_plugin", "plugin_path", "fetch", "field_value"]
+
+
+def plugin_path():
+    """Path of CraterKit.so: $CRATERKIT_PLUGIN, else the first match on $PV_PLUGIN_PATH."""
+    path = os.environ.get("CRATERKIT_PLUGIN")
+    if path and os.path.isfile(path):
+        return path
+    for folder in os.environ.get("PV_PLUGIN_PATH", "").split(os.pathsep):
+        hits = glob.glob(os.path.join(folder, "**", "CraterKit.so"), recursive=True)
+        if hits:
+            return hits[0]
+    raise RuntimeError(
+        "CraterKit plugin not found: run the script through scripts/pvbatch, "
+        "or set CRATERKIT_PLUGIN to the path of CraterKit.so")
+
+
+def load_plugin():
+    """Loads the plugin once and returns paraview.simple with its proxies defined."""
+    from paraview import simple
+    if not hasattr(simple, "GranularBed"):
+        simple.LoadPlugin(plugin_path(), remote=False, ns=vars(simple))
+    if not hasattr(simple, "GranularBed"):
+        raise RuntimeError("CraterKit plugin loaded but defines no GranularBed source")
+    return simple
+
+
+def fetch(proxy):
+    """The VTK data object of a proxy's output, updated."""
+    from paraview import servermanager
+    proxy.UpdatePipeline()
+    return servermanager.Fetch(proxy)
+
+
+def field_value(data, name, default=None):
+    """First value of a field-data array (number or string), or default if absent."""
+    fd = data.GetFieldData()
+    array = fd.GetAbstractArray(name)
+    if array is None or array.GetNumberOfTuples() == 0:
+        return default
+    if array.IsA("vtkStringArray"):
+        return array.GetValue(0)
+    if array.GetNumberOfComponents() > 1:
+        return [array.GetComponent(0, k) for k in range(array.GetNumberOfComponents())]
+    return array.GetTuple1(0)

@@ -1,0 +1,130 @@
+"""Crater-style cross-sections rendered headless (after Figure 2 of Zhang et al., LPSC 2021).
+
+A slab of particles |y| <= half_width through the impact axis, seen along +y with a parallel
+projection, particles drawn as spheres of their true radius coloured by an array (height by
+default), the original surface as a dashed horizontal line and the central axis as a dashed
+vertical line.
+"""
+
+from . import load_plugin
+
+
+def _dashed_lines_script(x_min, x_max, z_min, z_max, surface, y, dash):
+    # Runs inside a ProgrammableSource: builds dashed line segments as a vtkPolyData.
+    return f"""
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+points, lines = vtkPoints(), vtkCellArray()
+def dashes(a, b, fixed, horizontal):
+    s = a
+    while s < b:
+        e = s + {dash} if s + {dash} < b else b
+        p = (s, {y}, fixed) if horizontal else (fixed, {y}, s)
+        q = (e, {y}, fixed) if horizontal else (fixed, {y}, e)
+        i = points.InsertNextPoint(*p)
+        j = points.InsertNextPoint(*q)
+        lines.InsertNextCell(2)
+        lines.InsertCellPoint(i)
+        lines.InsertCellPoint(j)
+        s += 2 * {dash}
+dashes({x_min}, {x_max}, {surface}, True)
+dashes({z_min}, {z_max}, 0.0, False)
+out = self.GetPolyDataOutput()
+out.SetPoints(points)
+out.SetLines(lines)
+"""
+
+
+def render_cross_section(source, filename, half_width=None, color_by="Height",
+                         surface_height=0.0, resolution=(1600, 900), label=None,
+                         color_range=None):
+    """Renders the cross-section of a particle source to a PNG and returns the slab proxy.
+
+    source: a CraterKit particle proxy (points with a Radius array).
+    half_width: half thickness of the slab in m (default: twice the largest radius).
+    color_by: point array to colour by; "Height" is z.
+    """
+    simple = load_plugin()
+    from paraview import servermanager
+    data = servermanager.Fetch(source)
+    radius = data.GetPointData().GetArray("Radius")
+    rmax = radius.GetRange()[1] if radius is not None else 0.0
+    if half_width is None:
+        half_width = 2.0 * rmax
+    bounds = data.GetBounds()
+
+    height = simple.Calculator(Input=source, ResultArrayName="Height", Function="coordsZ")
+    offset = simple.Calculator(Input=height, ResultArrayName="SlabDistance", Function="abs(coordsY)")
+    slab = simple.Threshold(Input=offset, Scalars=["POINTS", "SlabDistance"])
+    slab.LowerThreshold = 0.0
+    slab.UpperThreshold = half_width
+
+    view = simple.CreateView("RenderView")
+    view.ViewSize = list(resolution)
+    view.OrientationAxesVisibility = 0
+    view.UseColorPaletteForBackground = 0
+    view.Background = [1.0, 1.0, 1.0]
+
+    # True sphere glyphs (not point sprites): they occlude and are occluded correctly by
+    # the reference lines, and keep their radius in world units.
+    spheres = simple.Glyph(Input=slab, GlyphType="Sphere")
+    spheres.GlyphType.Radius = 1.0
+    spheres.GlyphType.ThetaResolution = 16
+    spheres.GlyphType.PhiResolution = 12
+    spheres.ScaleArray = ["POINTS", "Radius"]
+    spheres.ScaleFactor = 1.0
+    spheres.GlyphMode = "All Points"
+    spheres.OrientationArray = ["POINTS", "No orientation array"]
+    display = simple.Show(spheres, view)
+    simple.ColorBy(display, ("POINTS", color_by))
+    lut = simple.GetColorTransferFunction(color_by)
+    lut.ApplyPreset("Viridis (matplotlib)", True)
+    if color_range is not None:
+        lut.RescaleTransferFunction(*color_range)
+    else:
+        display.RescaleTransferFunctionToDataRange(True, False)
+    display.SetScalarBarVisibility(view, True)
+    bar = simple.GetScalarBar(lut, view)
+    bar.Title = "Height (m)" if color_by == "Height" else color_by
+    bar.ComponentTitle = ""
+    bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
+    bar.WindowLocation = "Any Location"
+    bar.Orientation = "Vertical"
+    bar.Position = [0.93, 0.15]
+    bar.ScalarBarLength = 0.6
+
+    pad = 0.06 * (bounds[1] - bounds[0])
+    lines = simple.ProgrammableSource()
+    lines.OutputDataSetType = "vtkPolyData"
+    lines.Script = _dashed_lines_script(
+        bounds[0] - pad, bounds[1] + pad, bounds[4] - pad, bounds[5] + 0.5 * pad + rmax,
+        surface_height, -0.5 * (bounds[1] - bounds[0]), 0.015 * (bounds[1] - bounds[0]))
+    line_display = simple.Show(lines, view)
+    line_display.ColorArrayName = ["POINTS", ""]
+    line_display.AmbientColor = line_display.DiffuseColor = [0.1, 0.1, 0.1]
+    line_display.LineWidth = 2.0
+
+    if label:
+        text = simple.Text(Text=label)
+        text_display = simple.Show(text, view)
+        text_display.WindowLocation = "Lower Left Corner"
+        text_display.FontSize = 22
+        text_display.Color = [0.1, 0.1, 0.1]
+
+    simple.Render(view)  # the first render resets the camera: place it afterwards
+    cx = 0.5 * (bounds[0] + bounds[1])
+    cz = 0.5 * (bounds[4] + bounds[5])
+    view.CameraParallelProjection = 1
+    view.CameraFocalPoint = [cx, 0.0, cz]
+    view.CameraPosition = [cx, -10.0 * (bounds[1] - bounds[0] + 1.0), cz]
+    view.CameraViewUp = [0.0, 0.0, 1.0]
+    aspect = resolution[0] / resolution[1]
+    view.CameraParallelScale = 0.5 * max(1.15 * (bounds[5] - bounds[4]) + 2 * pad,
+                                         1.35 * (bounds[1] - bounds[0] + 2 * pad) / aspect)
+    simple.Render(view)
+    simple.SaveScreenshot(filename, view, ImageResolution=list(resolution),
+                          TransparentBackground=0)
+    # Release the view (and its OpenGL context) now, not at interpreter exit, when the
+    # X connection of xvfb may already be gone.
+    simple.Delete(view)
+    return slab
