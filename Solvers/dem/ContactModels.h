@@ -1,0 +1,200 @@
+// Soft-sphere contact laws of pkdgrav's SSDEM.
+//
+// Normal laws (chosen at run time by name):
+//   LinearSpringDashpot  F_N = -k_N x n + C_N u_n, C_N from the normal restitution
+//                        (Schwartz, Richardson & Michel 2012, Granular Matter 14:363, Eqs. 3, 15-16).
+//   Hertz                F_N = -(4/3) E* sqrt(r x) x n + C u_n with C from the restitution as in
+//                        Tsuji et al. 1992 (the form LIGGGHTS' hertz model uses).
+// Friction (Schwartz et al. 2012 Eqs. 6-7, 17-19; rolling and twisting spring-dashpot-slider
+// with shape parameter beta, pkdgrav's DEM_ROTATION_DASHPOT after Jiang, Shen & Wang 2015
+// and Zhang et al. 2017, Icarus 294:98): see PHYSICS.md §1.3-1.4 for every equation used here.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace craterkit {
+
+struct ContactParams {
+  std::string normalModel = "LinearSpringDashpot"; // or "Hertz"
+  double kN = 1.0e6;         // normal stiffness, N/m (linear law)
+  double kT = -1.0;          // tangential stiffness, N/m; < 0 means 2/7 k_N (pkdgrav default)
+  double restitutionN = 0.55; // normal coefficient of restitution ε_n
+  double restitutionT = 0.55; // tangential ε_t (sets C_T)
+  double muS = 0.6;          // static (sliding) friction
+  double muR = 1.05;         // rolling friction
+  double muT = 1.3;          // twisting friction
+  double beta = 0.5;         // shape parameter (contact size relative to the reduced radius)
+  double cohesion = 0.0;     // Pa; attractive normal force c 4 (beta r)^2 per contact
+  double youngsModulus = 1.0e8; // Pa (Hertz)
+  double poissonRatio = 0.25;   // (Hertz)
+
+  double tangentialStiffness() const { return kT < 0.0 ? 2.0 / 7.0 * kN : kT; }
+  void validate() const; // throws InputError naming the bad coefficient
+};
+
+// Damping coefficient C = 2 sqrt(k mu) (-ln e) / sqrt(pi^2 + ln^2 e) (Schwartz 2012 Eq. 15).
+inline double dashpotCoefficient(double k, double restitution, double reducedMass) {
+  if (restitution >= 1.0)
+    return 0.0;
+  const double l = std::log(std::max(restitution, 1e-12));
+  return 2.0 * std::sqrt(k * reducedMass) * (-l) / std::sqrt(M_PI * M_PI + l * l);
+}
+
+// History of one contact, carried in the contact frame between steps.
+struct ContactHistory {
+  double spring[3] = {0, 0, 0};   // tangential spring S
+  double rolling[3] = {0, 0, 0};  // rolling displacement ξ_R
+  double twisting = 0.0;          // twisting angle ξ_Q
+  double normal[3] = {0, 0, 0};   // contact normal at the previous step (0 = new contact)
+  void clear() { *this = ContactHistory{}; }
+  bool fresh() const { return normal[0] == 0.0 && normal[1] == 0.0 && normal[2] == 0.0; }
+};
+
+// Geometry and kinematics of a contact seen from particle p (n is the partner or a wall).
+struct ContactState {
+  Eigen::Vector3d n;     // unit normal from p towards n
+  double overlap;        // x > 0
+  double leverP, leverN; // distances from the centres to the contact point (leverN = inf: wall)
+  // Velocity of n's surface relative to p's at the contact point:
+  // u = v_n - v_p + l_n (n x w_n) + l_p (n x w_p). (PHYSICS.md §1.1 prints "- l_p"; p's
+  // contact point is at +l_p n, whose velocity is v_p + w_p x l_p n = v_p - l_p n x w_p.)
+  Eigen::Vector3d u;
+  Eigen::Vector3d omegaRel; // ω_n - ω_p
+  Eigen::Vector3d omegaSum; // ω_p + ω_n (frame spin)
+  double reducedMass;
+  double reducedRadius;
+};
+
+struct ContactResult {
+  Eigen::Vector3d force;   // on p (n gets minus this)
+  Eigen::Vector3d torqueP; // on p
+  Eigen::Vector3d torqueN; // on n
+  double normalForce;      // |F_N|
+};
+
+// A normal law: elastic force magnitude, the stiffness used for rolling and twisting
+// springs, the dashpot coefficient, and the stored elastic energy.
+struct LinearSpringDashpot {
+  static constexpr const char* name = "LinearSpringDashpot";
+  double kN, restitution;
+  double elastic(double x, double) const { return kN * x; }
+  double stiffness(double, double) const { return kN; }
+  double damping(double, double, double mu) const { return dashpotCoefficient(kN, restitution, mu); }
+  double energy(double x, double) const { return 0.5 * kN * x * x; }
+};
+
+struct Hertz {
+  static constexpr const char* name = "Hertz";
+  // E* = E / (2 (1 - ν^2)) between two particles of one material, E / (1 - ν^2) against a
+  // rigid wall.
+  double effectiveModulus;
+  double restitution;
+  double elastic(double x, double r) const { return 4.0 / 3.0 * effectiveModulus * std::sqrt(r * x) * x; }
+  double stiffness(double x, double r) const { return 2.0 * effectiveModulus * std::sqrt(r * x); }
+  double damping(double x, double r, double mu) const {
+    if (restitution >= 1.0)
+      return 0.0;
+    const double l = std::log(std::max(restitution, 1e-12));
+    const double b = -l / std::sqrt(l * l + M_PI * M_PI);
+    return 2.0 * std::sqrt(5.0 / 6.0) * b * std::sqrt(stiffness(x, r) * mu);
+  }
+  double energy(double x, double r) const {
+    return 8.0 / 15.0 * effectiveModulus * std::sqrt(r) * std::pow(x, 2.5);
+  }
+};
+
+// Rotates history vectors with the contact frame (PHYSICS.md §1.3 (a)-(b)).
+void carryContactFrame(ContactHistory& h, const Eigen::Vector3d& n, const Eigen::Vector3d& omegaSum,
+                       double dt);
+
+// One contact: normal law + SSDEM tangential, rolling and twisting resistance.
+template <class Normal>
+ContactResult ssdemContact(const Normal& law, const ContactParams& p, double kT, const ContactState& c,
+                           ContactHistory& h, double dt) {
+  ContactResult out;
+  const Eigen::Vector3d& n = c.n;
+  const double un = c.u.dot(n);
+  const Eigen::Vector3d uN = un * n;
+  const Eigen::Vector3d uT = c.u - uN;
+  const double cN = law.damping(c.overlap, c.reducedRadius, c.reducedMass);
+  Eigen::Vector3d fN = -law.elastic(c.overlap, c.reducedRadius) * n + cN * uN;
+  if (p.cohesion > 0.0) {
+    const double a = p.beta * c.reducedRadius;
+    fN += p.cohesion * 4.0 * a * a * n;
+  }
+  const double fNmag = fN.norm();
+  out.normalForce = fNmag;
+
+  if (!h.fresh())
+    carryContactFrame(h, n, c.omegaSum, dt);
+  Eigen::Map<Eigen::Vector3d> S(h.spring), xiR(h.rolling);
+  // Tangential spring and Coulomb slider; pkdgrav zeroes the spring when it slips.
+  const double cT = dashpotCoefficient(kT, p.restitutionT, c.reducedMass);
+  S += uT * dt;
+  Eigen::Vector3d fT = kT * S + cT * uT;
+  const double fTmax = p.muS * fNmag;
+  if (fT.norm() > fTmax) {
+    S.setZero();
+    const double ut = uT.norm();
+    fT = (ut > 0.0 ? std::min(fTmax, cT * ut) / ut : 0.0) * uT;
+  }
+
+  Eigen::Vector3d mR = Eigen::Vector3d::Zero(), mQ = Eigen::Vector3d::Zero();
+  if (p.muR > 0.0 || p.muT > 0.0) {
+    const double br = p.beta * c.reducedRadius;
+    const double kN = law.stiffness(c.overlap, c.reducedRadius);
+    // Rolling (Kuhn & Bagi objective rolling rate, as in pkdgrav).
+    const double twistRate = c.omegaRel.dot(n);
+    const double invN = std::isfinite(c.leverN) ? 1.0 / c.leverN : 0.0;
+    const Eigen::Vector3d omegaR =
+        c.omegaRel - twistRate * n + 0.5 * (1.0 / c.leverP - invN) * n.cross(c.u);
+    if (p.muR > 0.0) {
+      const double kR = kN * br * br, cR = cN * br * br, mRmax = p.muR * br * fNmag;
+      xiR += omegaR * dt;
+      mR = kR * xiR;
+      const double m = mR.norm();
+      if (m > mRmax) {
+        mR *= mRmax / m;
+        xiR -= omegaR * dt;
+      } else {
+        mR += cR * omegaR;
+      }
+    }
+    if (p.muT > 0.0) {
+      const double kQ = 2.0 * kT * br * br, cQ = 2.0 * cT * br * br;
+      const double mQmax = p.muT * br * p.muS * fNmag;
+      h.twisting += twistRate * dt;
+      const double trial = kQ * h.twisting;
+      if (std::abs(trial) > mQmax) {
+        mQ = std::copysign(mQmax, trial) * n;
+        h.twisting -= twistRate * dt;
+      } else {
+        mQ = (trial + cQ * twistRate) * n;
+      }
+    }
+  }
+  for (int k = 0; k < 3; ++k)
+    h.normal[k] = n[k];
+  const Eigen::Vector3d nxT = n.cross(fT);
+  out.force = fN + fT;
+  out.torqueP = c.leverP * nxT + mR + mQ;
+  out.torqueN = (std::isfinite(c.leverN) ? c.leverN : 0.0) * nxT - mR - mQ;
+  return out;
+}
+
+// Proposed k_N and time step (Schwartz 2012 Eqs. 4-5, 36-39; PHYSICS.md §1.6).
+struct StiffnessProposal {
+  double kN;            // N/m
+  double collisionTime; // s, undamped, smallest pair
+  double dt;            // s
+};
+StiffnessProposal proposeStiffness(double smallestRadius, double density, double maxSpeed,
+                                   double overlapFraction, double gravity, double bedHeight,
+                                   double stepsPerCollision = 30.0);
+
+} // namespace craterkit

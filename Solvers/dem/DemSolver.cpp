@@ -1,0 +1,839 @@
+#include "DemSolver.h"
+
+#include "../common/CellList.h"
+#include "../common/Error.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace craterkit {
+
+namespace {
+
+using Vec = Eigen::Vector3d;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+inline Vec at(const std::vector<double>& a, std::size_t i) { return Vec(a[3 * i], a[3 * i + 1], a[3 * i + 2]); }
+inline void put(std::vector<double>& a, std::size_t i, const Vec& v) {
+  a[3 * i] = v[0];
+  a[3 * i + 1] = v[1];
+  a[3 * i + 2] = v[2];
+}
+
+std::string describe(const ParticleSet& s, std::size_t i) {
+  std::ostringstream out;
+  out << "particle " << i << " (Id " << s.id[i] << ")";
+  return out.str();
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+void Gravity::acceleration(const double x[3], double a[3]) const {
+  switch (type) {
+  case Type::None:
+    a[0] = a[1] = a[2] = 0.0;
+    return;
+  case Type::Uniform:
+    for (int k = 0; k < 3; ++k)
+      a[k] = vector[k];
+    return;
+  default: {
+    const double d[3] = {x[0] - centre[0], x[1] - centre[1], x[2] - centre[2]};
+    const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    const double f = r2 > 0.0 ? -GM / (r2 * std::sqrt(r2)) : 0.0;
+    for (int k = 0; k < 3; ++k)
+      a[k] = f * d[k];
+  }
+  }
+}
+
+double Gravity::potential(const double x[3]) const {
+  switch (type) {
+  case Type::None:
+    return 0.0;
+  case Type::Uniform:
+    return -(vector[0] * x[0] + vector[1] * x[1] + vector[2] * x[2]);
+  default: {
+    const double d[3] = {x[0] - centre[0], x[1] - centre[1], x[2] - centre[2]};
+    const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    return r > 0.0 ? -GM / r : 0.0;
+  }
+  }
+}
+
+void Gravity::validate() const {
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(vector[k]) || !std::isfinite(centre[k]))
+      throw InputError("Gravity must be finite");
+  if (!std::isfinite(GM) || GM < 0.0)
+    throw InputError("the point-mass GM must be finite and non-negative");
+}
+
+void DemParams::validate() const {
+  contact.validate();
+  gravity.validate();
+  for (const Wall& w : walls)
+    w.validate();
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    std::ostringstream msg;
+    msg << "TimeStep must be positive and finite (got " << dt << " s)";
+    throw InputError(msg.str());
+  }
+  if (!std::isfinite(skin))
+    throw InputError("the Verlet skin must be finite");
+  if (!(overlapAbort > 0.0) || !(initialOverlapLimit >= 0.0) || !(minStepsPerCollision > 0.0))
+    throw InputError("overlap and step limits must be positive");
+}
+
+// ---------------------------------------------------------------------------------------------
+DemSolver::DemSolver(const ParticleSet& particles, const DemParams& params)
+    : state_(particles), params_(params) {
+  initialise(true);
+}
+
+DemSolver::DemSolver(Restore, const ParticleSet& particles, const DemParams& params)
+    : state_(particles), params_(params) {
+  initialise(false);
+}
+
+void DemSolver::warn(const std::string& message) {
+  if (warnings_.size() < 100)
+    warnings_.push_back(message);
+}
+
+void DemSolver::checkInput() const {
+  const ParticleSet& s = state_;
+  if (n_ == 0)
+    throw InputError("the DEM input has no particles");
+  if (n_ > std::numeric_limits<std::uint32_t>::max())
+    throw InputError("the DEM supports at most 2^32 - 1 particles");
+  if (s.position.size() != 3 * n_ || s.velocity.size() != 3 * n_ ||
+      s.angularVelocity.size() != 3 * n_ || s.mass.size() != n_ || s.id.size() != n_)
+    throw InputError("the DEM input arrays have inconsistent lengths");
+  std::size_t badPos = 0, badVel = 0, badRadius = 0, badMass = 0, first = n_;
+  for (std::size_t i = 0; i < n_; ++i) {
+    bool bad = false;
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(s.position[3 * i + k])) {
+        ++badPos;
+        bad = true;
+        break;
+      }
+    }
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(s.velocity[3 * i + k]) || !std::isfinite(s.angularVelocity[3 * i + k])) {
+        ++badVel;
+        bad = true;
+        break;
+      }
+    if (!(s.radius[i] > 0.0) || !std::isfinite(s.radius[i])) {
+      ++badRadius;
+      bad = true;
+    }
+    if (!(s.mass[i] > 0.0) || !std::isfinite(s.mass[i])) {
+      ++badMass;
+      bad = true;
+    }
+    if (bad && first == n_)
+      first = i;
+  }
+  if (first != n_) {
+    std::ostringstream msg;
+    msg << "bad particles in the DEM input: " << badPos << " with NaN or infinite positions, "
+        << badVel << " with NaN or infinite velocities or spins, " << badRadius
+        << " with non-positive radii, " << badMass << " with non-positive masses (first: "
+        << describe(s, first) << ")";
+    throw InputError(msg.str());
+  }
+}
+
+void DemSolver::initialise(bool computeInitialForces) {
+  n_ = state_.size();
+  params_.validate();
+  checkInput();
+  const ParticleSet& s = state_;
+  const double rmin = *std::min_element(s.radius.begin(), s.radius.end());
+  rmax_ = *std::max_element(s.radius.begin(), s.radius.end());
+  skin_ = params_.skin < 0.0 ? 0.2 * rmin : params_.skin;
+  inertia_.resize(n_);
+  for (std::size_t i = 0; i < n_; ++i)
+    inertia_[i] = 0.4 * s.mass[i] * s.radius[i] * s.radius[i];
+  acc_.assign(3 * n_, 0.0);
+  alpha_.assign(3 * n_, 0.0);
+  vPred_ = s.velocity;
+  wPred_ = s.angularVelocity;
+  wallHistory_.assign(n_ * params_.walls.size(), ContactHistory{});
+  wallActive_.assign(n_ * params_.walls.size(), 0);
+
+  // Stability: the shortest contact is the lightest pair (reduced mass m/2).
+  const double mmin = *std::min_element(s.mass.begin(), s.mass.end());
+  double k = params_.contact.kN;
+  if (params_.contact.normalModel == "Hertz") {
+    const double E = params_.contact.youngsModulus / (1.0 - std::pow(params_.contact.poissonRatio, 2));
+    k = 2.0 * E * std::sqrt(rmin * 0.01 * rmin); // wall stiffness at 1 % overlap
+  }
+  collisionTime_ = M_PI * std::sqrt(0.5 * mmin / k);
+  const double steps = collisionTime_ / params_.dt;
+  if (steps < params_.minStepsPerCollision) {
+    std::ostringstream msg;
+    msg << "TimeStep " << params_.dt << " s is above the stability limit: the shortest contact lasts "
+        << collisionTime_ << " s, only " << steps << " steps; use at most "
+        << collisionTime_ / 30.0 << " s (30 steps per contact)";
+    throw InputError(msg.str());
+  }
+  if (steps < params_.warnStepsPerCollision) {
+    std::ostringstream msg;
+    msg << "only " << steps << " steps per contact (TimeStep " << params_.dt
+        << " s): pkdgrav recommends 30-50";
+    warn(msg.str());
+  }
+
+  buildNeighbourList();
+  // Refuse inputs that start deeply overlapped: the spring would launch them.
+  std::size_t deep = 0;
+  double worst = 0.0;
+  std::size_t wi = 0, wj = 0;
+  for (std::size_t k2 = 0; k2 < pairI_.size(); ++k2) {
+    const std::size_t i = pairI_[k2], j = pairJ_[k2];
+    const Vec d = at(s.position, j) - at(s.position, i);
+    const double f = (s.radius[i] + s.radius[j] - d.norm()) / std::min(s.radius[i], s.radius[j]);
+    if (f > params_.initialOverlapLimit)
+      ++deep;
+    if (f > worst) {
+      worst = f;
+      wi = i;
+      wj = j;
+    }
+  }
+  if (deep > 0 && computeInitialForces) {
+    std::ostringstream msg;
+    msg << deep << " particle pairs overlap by more than " << 100 * params_.initialOverlapLimit
+        << " % of the smaller radius (worst " << 100 * worst << " %, " << describe(s, wi) << " and "
+        << describe(s, wj) << "): settle or space the input first";
+    throw InputError(msg.str());
+  }
+  if (computeInitialForces) {
+    computeForces();
+    if (worstOverlap_ > params_.overlapWarning) {
+      std::ostringstream msg;
+      msg << "initial overlaps up to " << 100 * worstOverlap_ << " % of a radius (walls included)";
+      warn(msg.str());
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+void DemSolver::buildNeighbourList() {
+  const double* x = state_.position.data();
+  const double* r = state_.radius.data();
+  CellList cells;
+  cells.build(x, n_, 2.0 * rmax_ + skin_);
+  std::vector<std::size_t> count(n_ + 1, 0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < n_; ++i) {
+    std::size_t c = 0;
+    cells.forEachCandidate(&x[3 * i], r[i] + rmax_ + skin_, [&](std::size_t j) {
+      if (j <= i)
+        return;
+      const double reach = r[i] + r[j] + skin_;
+      const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1], d2 = x[3 * j + 2] - x[3 * i + 2];
+      c += (d0 * d0 + d1 * d1 + d2 * d2 < reach * reach);
+    });
+    count[i + 1] = c;
+  }
+  std::vector<std::size_t> start(n_ + 1, 0);
+  for (std::size_t i = 0; i < n_; ++i)
+    start[i + 1] = start[i] + count[i + 1];
+  const std::size_t pairs = start[n_];
+  std::vector<std::uint32_t> newI(pairs), newJ(pairs);
+#pragma omp parallel
+  {
+    std::vector<std::uint32_t> buffer;
+#pragma omp for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n_; ++i) {
+      buffer.clear();
+      cells.forEachCandidate(&x[3 * i], r[i] + rmax_ + skin_, [&](std::size_t j) {
+        if (j <= i)
+          return;
+        const double reach = r[i] + r[j] + skin_;
+        const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1], d2 = x[3 * j + 2] - x[3 * i + 2];
+        if (d0 * d0 + d1 * d1 + d2 * d2 < reach * reach)
+          buffer.push_back(static_cast<std::uint32_t>(j));
+      });
+      std::sort(buffer.begin(), buffer.end());
+      std::copy(buffer.begin(), buffer.end(), newJ.begin() + start[i]);
+      std::fill(newI.begin() + start[i], newI.begin() + start[i + 1], static_cast<std::uint32_t>(i));
+    }
+  }
+  // Carry histories of pairs that stay in the list (both lists sorted by (i, j)).
+  std::vector<ContactHistory> newHistory(pairs);
+  std::vector<char> newActive(pairs, 0);
+  for (std::size_t a = 0, b = 0; a < pairI_.size() && b < pairs;) {
+    const auto ka = (static_cast<std::uint64_t>(pairI_[a]) << 32) | pairJ_[a];
+    const auto kb = (static_cast<std::uint64_t>(newI[b]) << 32) | newJ[b];
+    if (ka < kb) {
+      ++a;
+    } else if (kb < ka) {
+      ++b;
+    } else {
+      newHistory[b] = pairHistory_[a];
+      newActive[b] = pairActive_[a];
+      ++a;
+      ++b;
+    }
+  }
+  pairI_.swap(newI);
+  pairJ_.swap(newJ);
+  pairHistory_.swap(newHistory);
+  pairActive_.swap(newActive);
+  firstStart_.swap(start);
+  pairForce_.assign(3 * pairs, 0.0);
+  pairTorqueI_.assign(3 * pairs, 0.0);
+  pairTorqueJ_.assign(3 * pairs, 0.0);
+  // Pairs in which each particle is the second member, in increasing order of the first.
+  secondStart_.assign(n_ + 1, 0);
+  for (std::size_t k = 0; k < pairs; ++k)
+    ++secondStart_[pairJ_[k] + 1];
+  for (std::size_t i = 0; i < n_; ++i)
+    secondStart_[i + 1] += secondStart_[i];
+  secondPair_.resize(pairs);
+  std::vector<std::size_t> fill(secondStart_.begin(), secondStart_.end() - 1);
+  for (std::size_t k = 0; k < pairs; ++k)
+    secondPair_[fill[pairJ_[k]]++] = k;
+  refPos_ = state_.position;
+  ++builds_;
+}
+
+// ---------------------------------------------------------------------------------------------
+void DemSolver::computeForces() {
+  const ContactParams& c = params_.contact;
+  if (c.normalModel == "Hertz") {
+    const double E = c.youngsModulus / (1.0 - c.poissonRatio * c.poissonRatio);
+    computeForcesWith(Hertz{0.5 * E, c.restitutionN}, Hertz{E, c.restitutionN});
+  } else {
+    const LinearSpringDashpot law{c.kN, c.restitutionN};
+    computeForcesWith(law, law);
+  }
+}
+
+template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const Law& wallLaw) {
+  const ContactParams& cp = params_.contact;
+  const double kT = cp.tangentialStiffness();
+  const double dt = params_.dt;
+  const ParticleSet& s = state_;
+  const double* x = s.position.data();
+  const double* r = s.radius.data();
+  const double* m = s.mass.data();
+  const std::size_t pairs = pairI_.size();
+  double worst = 0.0;
+
+#pragma omp parallel for schedule(static) reduction(max : worst)
+  for (std::size_t k = 0; k < pairs; ++k) {
+    const std::size_t i = pairI_[k], j = pairJ_[k];
+    const Vec rho(x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]);
+    const double d2 = rho.squaredNorm(), sum = r[i] + r[j];
+    if (d2 >= sum * sum || d2 == 0.0) {
+      if (pairActive_[k]) {
+        pairActive_[k] = 0;
+        pairHistory_[k].clear();
+      }
+      continue;
+    }
+    const double d = std::sqrt(d2);
+    ContactState st;
+    st.n = rho / d;
+    st.overlap = sum - d;
+    st.leverP = (r[i] * r[i] - r[j] * r[j] + d2) / (2.0 * d);
+    st.leverN = d - st.leverP;
+    const Vec wi = at(wPred_, i), wj = at(wPred_, j);
+    // Surface velocities: p's contact point is at +l_p n from its centre, n's at -l_n n.
+    st.u = at(vPred_, j) - at(vPred_, i) + st.leverN * st.n.cross(wj) + st.leverP * st.n.cross(wi);
+    st.omegaRel = wj - wi;
+    st.omegaSum = wi + wj;
+    st.reducedMass = m[i] * m[j] / (m[i] + m[j]);
+    st.reducedRadius = r[i] * r[j] / sum;
+    const ContactResult res = ssdemContact(pairLaw, cp, kT, st, pairHistory_[k], dt);
+    put(pairForce_, k, res.force);
+    put(pairTorqueI_, k, res.torqueP);
+    put(pairTorqueJ_, k, res.torqueN);
+    pairActive_[k] = 1;
+    worst = std::max(worst, st.overlap / std::min(r[i], r[j]));
+  }
+
+  const std::size_t walls = params_.walls.size();
+#pragma omp parallel for schedule(static) reduction(max : worst)
+  for (std::size_t i = 0; i < n_; ++i) {
+    Vec f = Vec::Zero(), t = Vec::Zero();
+    for (std::size_t k = firstStart_[i]; k < firstStart_[i + 1]; ++k)
+      if (pairActive_[k]) {
+        f += at(pairForce_, k);
+        t += at(pairTorqueI_, k);
+      }
+    for (std::size_t q = secondStart_[i]; q < secondStart_[i + 1]; ++q) {
+      const std::size_t k = secondPair_[q];
+      if (pairActive_[k]) {
+        f -= at(pairForce_, k);
+        t += at(pairTorqueJ_, k);
+      }
+    }
+    for (std::size_t w = 0; w < walls; ++w) {
+      double nv[3], lever;
+      const double overlap = params_.walls[w].overlap(&x[3 * i], r[i], nv, lever);
+      ContactHistory& h = wallHistory_[i * walls + w];
+      if (!(overlap > 0.0)) {
+        if (wallActive_[i * walls + w]) {
+          wallActive_[i * walls + w] = 0;
+          h.clear();
+        }
+        continue;
+      }
+      ContactState st;
+      st.n = Vec(nv[0], nv[1], nv[2]);
+      st.overlap = overlap;
+      st.leverP = lever;
+      st.leverN = kInf;
+      const Vec wi = at(wPred_, i);
+      st.u = -at(vPred_, i) + st.leverP * st.n.cross(wi);
+      st.omegaRel = -wi;
+      st.omegaSum = wi;
+      st.reducedMass = m[i];
+      st.reducedRadius = r[i];
+      const ContactResult res = ssdemContact(wallLaw, cp, kT, st, h, dt);
+      f += res.force;
+      t += res.torqueP;
+      wallActive_[i * walls + w] = 1;
+      worst = std::max(worst, overlap / r[i]);
+    }
+    double g[3];
+    params_.gravity.acceleration(&x[3 * i], g);
+    for (int k = 0; k < 3; ++k) {
+      acc_[3 * i + k] = f[k] / m[i] + g[k];
+      alpha_[3 * i + k] = t[k] / inertia_[i];
+    }
+  }
+  worstOverlap_ = worst;
+}
+
+template <class Law> double DemSolver::elasticEnergyWith(const Law& pairLaw, const Law& wallLaw) const {
+  const ContactParams& cp = params_.contact;
+  const double kT = cp.tangentialStiffness();
+  const ParticleSet& s = state_;
+  double e = 0.0;
+  auto springs = [&](const ContactHistory& h, double overlap, double rbar, const Law& law) {
+    const Eigen::Map<const Vec> S(h.spring), xi(h.rolling);
+    const double br = cp.beta * rbar;
+    return law.energy(overlap, rbar) + 0.5 * kT * S.squaredNorm() +
+           0.5 * law.stiffness(overlap, rbar) * br * br * xi.squaredNorm() +
+           0.5 * 2.0 * kT * br * br * h.twisting * h.twisting;
+  };
+  for (std::size_t k = 0; k < pairI_.size(); ++k) {
+    const std::size_t i = pairI_[k], j = pairJ_[k];
+    const double d = (at(s.position, j) - at(s.position, i)).norm();
+    const double overlap = s.radius[i] + s.radius[j] - d;
+    if (overlap > 0.0)
+      e += springs(pairHistory_[k], overlap, s.radius[i] * s.radius[j] / (s.radius[i] + s.radius[j]), pairLaw);
+  }
+  const std::size_t walls = params_.walls.size();
+  for (std::size_t i = 0; i < n_; ++i)
+    for (std::size_t w = 0; w < walls; ++w) {
+      double nv[3], lever;
+      const double overlap = params_.walls[w].overlap(&s.position[3 * i], s.radius[i], nv, lever);
+      if (overlap > 0.0)
+        e += springs(wallHistory_[i * walls + w], overlap, s.radius[i], wallLaw);
+    }
+  return e;
+}
+
+// ---------------------------------------------------------------------------------------------
+void DemSolver::step() {
+  const double dt = params_.dt, h = 0.5 * dt;
+  std::vector<double>& x = state_.position;
+  std::vector<double>& v = state_.velocity;
+  std::vector<double>& w = state_.angularVelocity;
+  double moved = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : moved)
+  for (std::size_t i = 0; i < n_; ++i) {
+    double d2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t a = 3 * i + k;
+      v[a] += h * acc_[a];
+      w[a] += h * alpha_[a];
+      x[a] += dt * v[a];
+      const double d = x[a] - refPos_[a];
+      d2 += d * d;
+      vPred_[a] = v[a] + h * acc_[a];
+      wPred_[a] = w[a] + h * alpha_[a];
+    }
+    moved = std::max(moved, d2);
+  }
+  if (!std::isfinite(moved) || std::sqrt(moved) > 0.5 * skin_) {
+    // A non-finite position would poison the cell list: report it here.
+    for (std::size_t i = 0; i < n_; ++i)
+      for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(x[3 * i + k])) {
+          std::ostringstream msg;
+          msg << "the run blew up at step " << step_ + 1 << " (t = " << time_ + dt << " s): "
+              << describe(state_, i) << " has a non-finite position; reduce TimeStep";
+          throw std::runtime_error(msg.str());
+        }
+    buildNeighbourList();
+  }
+  computeForces();
+#pragma omp parallel for schedule(static)
+  for (std::size_t a = 0; a < 3 * n_; ++a) {
+    v[a] += h * acc_[a];
+    w[a] += h * alpha_[a];
+  }
+  time_ += dt;
+  ++step_;
+  if (worstOverlap_ > params_.overlapWarning) {
+    if (overlapWarningSteps_ == 0) {
+      std::ostringstream msg;
+      msg << "overlap of " << 100 * worstOverlap_ << " % of a radius at step " << step_
+          << " (limit " << 100 * params_.overlapWarning
+          << " %): raise NormalStiffness or lower the speeds";
+      warn(msg.str());
+    }
+    ++overlapWarningSteps_;
+  }
+  if (worstOverlap_ > params_.overlapAbort || !std::isfinite(worstOverlap_)) {
+    // Find the culprit for the message.
+    std::size_t culprit = 0;
+    double fastest = -1.0;
+    for (std::size_t i = 0; i < n_; ++i) {
+      const double sp = at(v, i).norm();
+      if (!(sp <= fastest)) {
+        fastest = sp;
+        culprit = i;
+      }
+    }
+    std::ostringstream msg;
+    msg << "the run blew up at step " << step_ << " (t = " << time_ << " s): overlap of "
+        << 100 * worstOverlap_ << " % of a radius (limit " << 100 * params_.overlapAbort
+        << " %); fastest is " << describe(state_, culprit) << " at " << fastest
+        << " m/s. Raise NormalStiffness or reduce TimeStep";
+    throw std::runtime_error(msg.str());
+  }
+}
+
+long long DemSolver::advanceTo(double endTime, const ProgressCallback& progress,
+                               const std::string& checkpointPath, long long checkpointEvery) {
+  if (!std::isfinite(endTime))
+    throw InputError("the end time must be finite");
+  const double start = time_;
+  const long long total = std::max(0LL, static_cast<long long>(std::llround((endTime - start) / params_.dt)));
+  const long long report = std::max(1LL, total / 200);
+  for (long long s = 0; s < total; ++s) {
+    if (s % report == 0)
+      reportProgress(progress, static_cast<double>(s) / total);
+    step();
+    if (!checkpointPath.empty() && checkpointEvery > 0 && step_ % checkpointEvery == 0)
+      writeCheckpoint(checkpointPath);
+  }
+  reportProgress(progress, 1.0);
+  return total;
+}
+
+// ---------------------------------------------------------------------------------------------
+DemDiagnostics DemSolver::diagnostics() const {
+  DemDiagnostics d;
+  d.time = time_;
+  d.step = step_;
+  const ParticleSet& s = state_;
+  for (std::size_t i = 0; i < n_; ++i) {
+    const Vec x = at(s.position, i), v = at(s.velocity, i), w = at(s.angularVelocity, i);
+    d.kineticEnergy += 0.5 * s.mass[i] * v.squaredNorm();
+    d.rotationalEnergy += 0.5 * inertia_[i] * w.squaredNorm();
+    d.gravitationalEnergy += s.mass[i] * params_.gravity.potential(&s.position[3 * i]);
+    d.momentum += s.mass[i] * v;
+    d.angularMomentum += s.mass[i] * x.cross(v) + inertia_[i] * w;
+    d.maxSpeed = std::max(d.maxSpeed, v.norm());
+  }
+  const ContactParams& c = params_.contact;
+  if (c.normalModel == "Hertz") {
+    const double E = c.youngsModulus / (1.0 - c.poissonRatio * c.poissonRatio);
+    d.elasticEnergy = elasticEnergyWith(Hertz{0.5 * E, c.restitutionN}, Hertz{E, c.restitutionN});
+  } else {
+    const LinearSpringDashpot law{c.kN, c.restitutionN};
+    d.elasticEnergy = elasticEnergyWith(law, law);
+  }
+  d.maxOverlap = worstOverlap_;
+  for (char a : pairActive_)
+    d.contacts += a != 0;
+  for (char a : wallActive_)
+    d.wallContacts += a != 0;
+  return d;
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> DemSolver::contactPairs() const {
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  const ParticleSet& s = state_;
+  for (std::size_t k = 0; k < pairI_.size(); ++k) {
+    const std::size_t i = pairI_[k], j = pairJ_[k];
+    if ((at(s.position, j) - at(s.position, i)).norm() < s.radius[i] + s.radius[j])
+      out.emplace_back(i, j);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Checkpoints: a versioned little-endian binary file. Every count is checked against the
+// bytes left in the file before anything is allocated.
+namespace {
+
+constexpr char kMagic[8] = {'C', 'K', 'D', 'E', 'M', 'C', 'P', '1'};
+
+struct Writer {
+  std::ostream& out;
+  template <class T> void pod(const T& v) { out.write(reinterpret_cast<const char*>(&v), sizeof(T)); }
+  void str(const std::string& s) {
+    pod<std::uint64_t>(s.size());
+    out.write(s.data(), static_cast<std::streamsize>(s.size()));
+  }
+  template <class T> void vec(const std::vector<T>& v) {
+    pod<std::uint64_t>(v.size());
+    out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+  }
+};
+
+struct Reader {
+  std::istream& in;
+  std::uint64_t left;
+  void need(std::uint64_t bytes, const char* what) {
+    if (bytes > left) {
+      std::ostringstream msg;
+      msg << "checkpoint truncated or corrupt: " << what << " needs " << bytes << " bytes, "
+          << left << " left";
+      throw InputError(msg.str());
+    }
+    left -= bytes;
+  }
+  template <class T> T pod(const char* what) {
+    need(sizeof(T), what);
+    T v;
+    in.read(reinterpret_cast<char*>(&v), sizeof(T));
+    if (!in)
+      throw InputError(std::string("checkpoint read failed at ") + what);
+    return v;
+  }
+  std::string str(const char* what) {
+    const auto size = pod<std::uint64_t>(what);
+    need(size, what);
+    std::string s(size, '\0');
+    in.read(s.data(), static_cast<std::streamsize>(size));
+    return s;
+  }
+  template <class T> std::vector<T> vec(const char* what, std::uint64_t expected) {
+    const auto size = pod<std::uint64_t>(what);
+    if (expected != ~0ULL && size != expected) {
+      std::ostringstream msg;
+      msg << "checkpoint corrupt: " << what << " has " << size << " entries, expected " << expected;
+      throw InputError(msg.str());
+    }
+    if (size > left / sizeof(T))
+      need(size * sizeof(T), what);
+    need(size * sizeof(T), what);
+    std::vector<T> v(size);
+    in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(size * sizeof(T)));
+    if (!in)
+      throw InputError(std::string("checkpoint read failed at ") + what);
+    return v;
+  }
+};
+
+} // namespace
+
+void DemSolver::writeCheckpoint(std::ostream& out) const {
+  Writer w{out};
+  out.write(kMagic, sizeof(kMagic));
+  w.pod<std::uint32_t>(1u); // endianness probe
+  const ContactParams& c = params_.contact;
+  w.str(c.normalModel);
+  for (double v : {c.kN, c.kT, c.restitutionN, c.restitutionT, c.muS, c.muR, c.muT, c.beta, c.cohesion,
+                   c.youngsModulus, c.poissonRatio})
+    w.pod(v);
+  w.pod<std::uint64_t>(params_.walls.size());
+  for (const Wall& wall : params_.walls) {
+    w.pod<std::int32_t>(static_cast<std::int32_t>(wall.type));
+    w.pod(wall.point);
+    w.pod(wall.normal);
+    w.pod(wall.radius);
+  }
+  w.pod<std::int32_t>(static_cast<std::int32_t>(params_.gravity.type));
+  w.pod(params_.gravity.vector);
+  w.pod(params_.gravity.GM);
+  w.pod(params_.gravity.centre);
+  for (double v : {params_.dt, params_.skin, params_.overlapWarning, params_.overlapAbort,
+                   params_.initialOverlapLimit, params_.minStepsPerCollision, params_.warnStepsPerCollision})
+    w.pod(v);
+  w.pod<std::uint64_t>(n_);
+  w.pod(time_);
+  w.pod(step_);
+  const ParticleSet& s = state_;
+  w.vec(s.position);
+  w.vec(s.velocity);
+  w.vec(s.angularVelocity);
+  w.vec(s.radius);
+  w.vec(s.mass);
+  w.vec(s.density);
+  w.vec(s.material);
+  w.vec(s.id);
+  w.vec(acc_);
+  w.vec(alpha_);
+  std::vector<std::uint32_t> ci, cj;
+  std::vector<ContactHistory> ch;
+  for (std::size_t k = 0; k < pairI_.size(); ++k)
+    if (pairActive_[k]) {
+      ci.push_back(pairI_[k]);
+      cj.push_back(pairJ_[k]);
+      ch.push_back(pairHistory_[k]);
+    }
+  w.vec(ci);
+  w.vec(cj);
+  w.vec(ch);
+  w.vec(wallHistory_);
+  w.vec(wallActive_);
+  w.pod<std::uint64_t>(overlapWarningSteps_);
+  out.write(kMagic, sizeof(kMagic)); // trailer: a complete file ends with the magic again
+  if (!out)
+    throw std::runtime_error("writing the checkpoint failed");
+}
+
+void DemSolver::writeCheckpoint(const std::string& path) const {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out)
+      throw InputError("cannot write checkpoint file " + tmp);
+    writeCheckpoint(out);
+    out.flush();
+    if (!out)
+      throw std::runtime_error("writing checkpoint file " + tmp + " failed (disk full?)");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw std::runtime_error("cannot move the checkpoint to " + path);
+}
+
+DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t available) {
+  Reader r{in, available};
+  char magic[8];
+  r.need(sizeof(magic), "magic");
+  in.read(magic, sizeof(magic));
+  if (!in || std::memcmp(magic, kMagic, sizeof(magic)) != 0)
+    throw InputError("not a CraterKit DEM checkpoint (wrong magic)");
+  if (r.pod<std::uint32_t>("endianness") != 1u)
+    throw InputError("checkpoint written on a machine of the other endianness");
+  DemParams p;
+  ContactParams& c = p.contact;
+  c.normalModel = r.str("normal model");
+  for (double* v : {&c.kN, &c.kT, &c.restitutionN, &c.restitutionT, &c.muS, &c.muR, &c.muT, &c.beta,
+                    &c.cohesion, &c.youngsModulus, &c.poissonRatio})
+    *v = r.pod<double>("contact parameters");
+  const auto walls = r.pod<std::uint64_t>("wall count");
+  if (walls > 1000)
+    throw InputError("checkpoint corrupt: implausible wall count");
+  for (std::uint64_t k = 0; k < walls; ++k) {
+    Wall wall;
+    const auto type = r.pod<std::int32_t>("wall type");
+    if (type < 0 || type > 2)
+      throw InputError("checkpoint corrupt: unknown wall type");
+    wall.type = static_cast<Wall::Type>(type);
+    wall.point = r.pod<std::array<double, 3>>("wall");
+    wall.normal = r.pod<std::array<double, 3>>("wall");
+    wall.radius = r.pod<double>("wall");
+    p.walls.push_back(wall);
+  }
+  const auto gtype = r.pod<std::int32_t>("gravity type");
+  if (gtype < 0 || gtype > 2)
+    throw InputError("checkpoint corrupt: unknown gravity type");
+  p.gravity.type = static_cast<Gravity::Type>(gtype);
+  p.gravity.vector = r.pod<std::array<double, 3>>("gravity");
+  p.gravity.GM = r.pod<double>("gravity");
+  p.gravity.centre = r.pod<std::array<double, 3>>("gravity");
+  for (double* v : {&p.dt, &p.skin, &p.overlapWarning, &p.overlapAbort, &p.initialOverlapLimit,
+                    &p.minStepsPerCollision, &p.warnStepsPerCollision})
+    *v = r.pod<double>("run parameters");
+  const auto n = r.pod<std::uint64_t>("particle count");
+  if (n == 0 || n > available / 100)
+    throw InputError("checkpoint corrupt: the particle count does not fit the file size");
+  const double time = r.pod<double>("time");
+  const auto step = r.pod<long long>("step");
+  ParticleSet s;
+  s.position = r.vec<double>("positions", 3 * n);
+  s.velocity = r.vec<double>("velocities", 3 * n);
+  s.angularVelocity = r.vec<double>("spins", 3 * n);
+  s.radius = r.vec<double>("radii", n);
+  s.mass = r.vec<double>("masses", n);
+  s.density = r.vec<double>("densities", n);
+  s.material = r.vec<int>("materials", n);
+  s.id = r.vec<std::int64_t>("ids", n);
+  auto acc = r.vec<double>("accelerations", 3 * n);
+  auto alpha = r.vec<double>("angular accelerations", 3 * n);
+  auto ci = r.vec<std::uint32_t>("contacts", ~0ULL);
+  auto cj = r.vec<std::uint32_t>("contacts", ci.size());
+  auto ch = r.vec<ContactHistory>("contact histories", ci.size());
+  auto wh = r.vec<ContactHistory>("wall histories", n * walls);
+  auto wa = r.vec<char>("wall contacts", n * walls);
+  const auto warnings = r.pod<std::uint64_t>("warning count");
+  char trailer[8];
+  r.need(sizeof(trailer), "trailer");
+  in.read(trailer, sizeof(trailer));
+  if (!in || std::memcmp(trailer, kMagic, sizeof(trailer)) != 0)
+    throw InputError("checkpoint incomplete (no trailer): the run was interrupted while writing it");
+  for (std::size_t k = 0; k < ci.size(); ++k)
+    if (ci[k] >= cj[k] || cj[k] >= n || (k > 0 && ((static_cast<std::uint64_t>(ci[k - 1]) << 32 | cj[k - 1]) >=
+                                                    (static_cast<std::uint64_t>(ci[k]) << 32 | cj[k]))))
+      throw InputError("checkpoint corrupt: contact list out of order");
+
+  DemSolver solver(Restore{}, s, p);
+  solver.time_ = time;
+  solver.step_ = step;
+  solver.acc_ = std::move(acc);
+  solver.alpha_ = std::move(alpha);
+  solver.wallHistory_ = std::move(wh);
+  solver.wallActive_ = std::move(wa);
+  solver.overlapWarningSteps_ = warnings;
+  // Merge the saved histories into the fresh list (every saved contact must be in it).
+  std::size_t found = 0;
+  for (std::size_t a = 0, b = 0; a < ci.size() && b < solver.pairI_.size();) {
+    const auto ka = (static_cast<std::uint64_t>(ci[a]) << 32) | cj[a];
+    const auto kb = (static_cast<std::uint64_t>(solver.pairI_[b]) << 32) | solver.pairJ_[b];
+    if (ka < kb) {
+      ++a;
+    } else if (kb < ka) {
+      ++b;
+    } else {
+      solver.pairHistory_[b] = ch[a];
+      solver.pairActive_[b] = 1;
+      ++found;
+      ++a;
+      ++b;
+    }
+  }
+  if (found != ci.size())
+    throw InputError("checkpoint corrupt: a saved contact is not between neighbouring particles");
+  return solver;
+}
+
+DemSolver DemSolver::readCheckpoint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in)
+    throw InputError("cannot open checkpoint file " + path);
+  const auto size = static_cast<std::uint64_t>(in.tellg());
+  in.seekg(0);
+  try {
+    return readCheckpoint(in, size);
+  } catch (const InputError& e) {
+    throw InputError(path + ": " + e.what());
+  }
+}
+
+} // namespace craterkit

@@ -1,0 +1,137 @@
+// Soft-sphere DEM integrator (pkdgrav SSDEM; Schwartz, Richardson & Michel 2012).
+//
+// Kick-drift-kick leapfrog with constant Δt (Schwartz 2012 Eq. 1; PHYSICS.md §1.5):
+// velocity-dependent forces use predicted velocities and spins v + Δt/2 a. Contacts come
+// from a half Verlet list (pairs i < j within r_i + r_j + skin) built with a cell list and
+// rebuilt only when a particle has moved more than half the skin; contact histories are
+// carried across rebuilds by merging the sorted pair lists.
+//
+// Forces are computed in two passes so that OpenMP never needs atomics: each pair writes
+// its force and torques to its own slot, then each particle sums its pairs in index order.
+// The result is bit-identical for any thread count, and a run resumed from a checkpoint
+// continues bit-identically (the restored run rebuilds its list; pairs out of contact
+// contribute nothing and the sums keep their order).
+#pragma once
+
+#include "../common/ParticleSet.h"
+#include "../common/Progress.h"
+#include "ContactModels.h"
+#include "Walls.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace craterkit {
+
+struct Gravity {
+  enum class Type { None = 0, Uniform = 1, PointMass = 2 };
+  Type type = Type::Uniform;
+  std::array<double, 3> vector{0.0, 0.0, -9.81}; // m/s^2 (Uniform)
+  double GM = 0.0;                                // m^3/s^2 (PointMass)
+  std::array<double, 3> centre{0.0, 0.0, 0.0};    // m (PointMass)
+
+  void acceleration(const double x[3], double a[3]) const;
+  double potential(const double x[3]) const; // per unit mass
+  void validate() const;
+};
+
+struct DemParams {
+  ContactParams contact;
+  std::vector<Wall> walls;
+  Gravity gravity;
+  double dt = 0.0;                   // s
+  double skin = -1.0;                // Verlet skin, m; < 0 means 0.2 x smallest radius
+  double overlapWarning = 0.01;      // warn above this overlap / smaller radius
+  double overlapAbort = 0.5;         // stop the run above this (pkdgrav's limit)
+  double initialOverlapLimit = 0.05; // refuse inputs overlapping more than this
+  double minStepsPerCollision = 10.0; // refuse Δt above τ / this (unstable)
+  double warnStepsPerCollision = 20.0;
+  void validate() const;
+};
+
+struct DemDiagnostics {
+  double time = 0.0;
+  long long step = 0;
+  double kineticEnergy = 0.0;      // translational, J
+  double rotationalEnergy = 0.0;   // J
+  double elasticEnergy = 0.0;      // springs of all active contacts, J
+  double gravitationalEnergy = 0.0; // J
+  double totalEnergy() const {
+    return kineticEnergy + rotationalEnergy + elasticEnergy + gravitationalEnergy;
+  }
+  Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angularMomentum = Eigen::Vector3d::Zero(); // about the origin, incl. spins
+  double maxOverlap = 0.0;   // largest overlap / smaller radius
+  std::size_t contacts = 0;  // particle-particle
+  std::size_t wallContacts = 0;
+  double maxSpeed = 0.0;
+};
+
+class DemSolver {
+public:
+  DemSolver(const ParticleSet& particles, const DemParams& params);
+
+  void step();
+  // Steps until time() >= endTime - dt/2. If checkpointPath is set, writes a checkpoint
+  // every checkpointEvery steps (atomically: a failed or aborted run keeps the last one).
+  long long advanceTo(double endTime, const ProgressCallback& progress = {},
+                      const std::string& checkpointPath = {}, long long checkpointEvery = 0);
+
+  double time() const { return time_; }
+  long long stepCount() const { return step_; }
+  const ParticleSet& particles() const { return state_; }
+  const DemParams& params() const { return params_; }
+  DemDiagnostics diagnostics() const;
+  double collisionTime() const { return collisionTime_; }
+  std::size_t neighbourBuilds() const { return builds_; }
+  std::size_t overlapWarnings() const { return overlapWarningSteps_; }
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  // Particle index pairs (i < j) in contact now, and (particle, wall) contacts.
+  std::vector<std::pair<std::size_t, std::size_t>> contactPairs() const;
+
+  void writeCheckpoint(std::ostream& out) const;
+  void writeCheckpoint(const std::string& path) const;
+  static DemSolver readCheckpoint(std::istream& in, std::uint64_t available);
+  static DemSolver readCheckpoint(const std::string& path);
+
+private:
+  struct Restore {};
+  DemSolver(Restore, const ParticleSet& particles, const DemParams& params);
+  void initialise(bool computeInitialForces);
+  void checkInput() const;
+  void buildNeighbourList();
+  void computeForces();
+  template <class Law> void computeForcesWith(const Law& pairLaw, const Law& wallLaw);
+  template <class Law> double elasticEnergyWith(const Law& pairLaw, const Law& wallLaw) const;
+  void warn(const std::string& message);
+
+  ParticleSet state_;
+  DemParams params_;
+  std::size_t n_ = 0;
+  double time_ = 0.0;
+  long long step_ = 0;
+  double skin_ = 0.0, rmax_ = 0.0, collisionTime_ = 0.0;
+  std::vector<double> inertia_, acc_, alpha_, vPred_, wPred_, refPos_;
+
+  // Half Verlet list, sorted by (i, j); per-pair history and outputs.
+  std::vector<std::uint32_t> pairI_, pairJ_;
+  std::vector<ContactHistory> pairHistory_;
+  std::vector<char> pairActive_;
+  std::vector<double> pairForce_, pairTorqueI_, pairTorqueJ_;
+  std::vector<std::size_t> firstStart_, secondStart_, secondPair_;
+  std::vector<ContactHistory> wallHistory_; // n_ x walls
+  std::vector<char> wallActive_;
+
+  double worstOverlap_ = 0.0;
+  std::size_t worstParticle_ = 0;
+  std::size_t builds_ = 0;
+  std::size_t overlapWarningSteps_ = 0;
+  std::vector<std::string> warnings_;
+};
+
+} // namespace craterkit

@@ -1,0 +1,103 @@
+#include "Walls.h"
+
+#include "../common/Error.h"
+
+#include <cmath>
+
+namespace craterkit {
+
+namespace {
+std::array<double, 3> unit(std::array<double, 3> v, const char* what) {
+  const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(len > 0.0) || !std::isfinite(len))
+    throw InputError(std::string("wall ") + what + " must be a non-zero finite vector");
+  return {v[0] / len, v[1] / len, v[2] / len};
+}
+} // namespace
+
+std::string Wall::typeName(Type t) {
+  switch (t) {
+  case Type::Plane:
+    return "Plane";
+  case Type::Bowl:
+    return "Bowl";
+  default:
+    return "Cylinder";
+  }
+}
+
+Wall Wall::plane(std::array<double, 3> p, std::array<double, 3> n) {
+  Wall w;
+  w.type = Type::Plane;
+  w.point = p;
+  w.normal = unit(n, "normal");
+  return w;
+}
+
+Wall Wall::bowl(std::array<double, 3> c, double r, std::array<double, 3> up) {
+  Wall w;
+  w.type = Type::Bowl;
+  w.point = c;
+  w.radius = r;
+  w.normal = unit(up, "up direction");
+  w.validate();
+  return w;
+}
+
+Wall Wall::cylinder(std::array<double, 3> p, std::array<double, 3> axis, double r) {
+  Wall w;
+  w.type = Type::Cylinder;
+  w.point = p;
+  w.radius = r;
+  w.normal = unit(axis, "axis");
+  w.validate();
+  return w;
+}
+
+void Wall::validate() const {
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(point[k]) || !std::isfinite(normal[k]))
+      throw InputError("a " + typeName(type) + " wall has a non-finite point or direction");
+  const double len2 = normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2];
+  if (std::abs(len2 - 1.0) > 1e-9)
+    throw InputError("a " + typeName(type) + " wall direction must be a unit vector");
+  if (type != Type::Plane && (!(radius > 0.0) || !std::isfinite(radius)))
+    throw InputError("a " + typeName(type) + " wall needs a positive radius");
+}
+
+double Wall::overlap(const double x[3], double r, double n[3], double& lever) const {
+  const double d[3] = {x[0] - point[0], x[1] - point[1], x[2] - point[2]};
+  const double along = d[0] * normal[0] + d[1] * normal[1] + d[2] * normal[2];
+  switch (type) {
+  case Type::Plane:
+    for (int k = 0; k < 3; ++k)
+      n[k] = -normal[k];
+    lever = along;
+    return r - along;
+  case Type::Bowl: {
+    if (along > 0.0) // above the rim plane: the bowl is open
+      return -1.0;
+    const double dist = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (dist == 0.0)
+      return r - radius;
+    for (int k = 0; k < 3; ++k)
+      n[k] = d[k] / dist;
+    lever = radius - dist;
+    return r - lever;
+  }
+  default: {
+    double rho[3];
+    for (int k = 0; k < 3; ++k)
+      rho[k] = d[k] - along * normal[k];
+    const double dist = std::sqrt(rho[0] * rho[0] + rho[1] * rho[1] + rho[2] * rho[2]);
+    if (dist == 0.0)
+      return r - radius;
+    for (int k = 0; k < 3; ++k)
+      n[k] = rho[k] / dist;
+    lever = radius - dist;
+    return r - lever;
+  }
+  }
+}
+
+} // namespace craterkit

@@ -1,0 +1,34 @@
+// Container walls for the DEM, after pkdgrav's wall types (docs/walls.tex): an infinite
+// plane, a hemispherical bowl (inside of the lower half of a sphere, open at the top) and an
+// infinite cylinder (inside). A particle touching a wall feels the same contact law as a
+// particle pair, with the wall as an immovable partner of infinite mass and radius.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace craterkit {
+
+struct Wall {
+  enum class Type { Plane = 0, Bowl = 1, Cylinder = 2 };
+  Type type = Type::Plane;
+  std::array<double, 3> point{0, 0, 0};  // plane: a point; bowl: centre; cylinder: axis point
+  std::array<double, 3> normal{0, 0, 1}; // plane: unit normal into the domain; cylinder: axis;
+                                         // bowl: "up", the bowl is the half below its centre
+  double radius = 0.0;                   // bowl and cylinder
+
+  static Wall plane(std::array<double, 3> point, std::array<double, 3> normal);
+  static Wall bowl(std::array<double, 3> centre, double radius, std::array<double, 3> up = {0, 0, 1});
+  static Wall cylinder(std::array<double, 3> axisPoint, std::array<double, 3> axis, double radius);
+
+  // Overlap of a sphere (centre x, radius r) with the wall; > 0 means contact. Also returns
+  // the unit normal from the particle towards the wall and the distance from the centre to
+  // the contact point.
+  double overlap(const double x[3], double r, double n[3], double& lever) const;
+
+  void validate() const; // throws InputError
+  static std::string typeName(Type t);
+};
+
+} // namespace craterkit
