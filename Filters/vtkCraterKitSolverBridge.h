@@ -12,6 +12,7 @@
 #include <vtkFieldData.h>
 #include <vtkIntArray.h>
 #include <vtkPointData.h>
+#include <vtkPointSet.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -77,7 +78,65 @@ inline void toPolyData(const ParticleSet& s, vtkPolyData* out) {
   pd->SetActiveScalars("Radius");
 }
 
+// Reads particles from point data; throws InputError naming a missing or malformed array.
+inline ParticleSet fromPolyData(vtkPointSet* in) {
+  if (!in || in->GetNumberOfPoints() == 0)
+    throw InputError("the input has no particles");
+  const vtkIdType n = in->GetNumberOfPoints();
+  vtkPointData* pd = in->GetPointData();
+  auto get = [&](const char* name, int components, bool required) -> vtkDataArray* {
+    vtkDataArray* a = pd->GetArray(name);
+    if (!a) {
+      if (required)
+        throw InputError(std::string("the input has no point array '") + name + "'");
+      return nullptr;
+    }
+    if (a->GetNumberOfComponents() != components)
+      throw InputError(std::string("point array '") + name + "' must have " +
+                       std::to_string(components) + " components");
+    return a;
+  };
+  vtkDataArray* radius = get("Radius", 1, true);
+  vtkDataArray* mass = get("Mass", 1, false);
+  vtkDataArray* density = get("Density", 1, false);
+  if (!mass && !density)
+    throw InputError("the input needs a 'Mass' or a 'Density' point array");
+  vtkDataArray* velocity = get("Velocity", 3, false);
+  vtkDataArray* spin = get("AngularVelocity", 3, false);
+  vtkDataArray* material = get("Material", 1, false);
+  vtkDataArray* id = get("Id", 1, false);
+  ParticleSet s;
+  s.reserve(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i) {
+    double x[3];
+    in->GetPoint(i, x);
+    const double r = radius->GetTuple1(i);
+    const double rho = density ? density->GetTuple1(i)
+                               : mass->GetTuple1(i) / (4.0 / 3.0 * M_PI * r * r * r);
+    s.add(x, r, rho, material ? static_cast<int>(material->GetTuple1(i)) : 0,
+          id ? static_cast<std::int64_t>(id->GetTuple1(i)) : static_cast<std::int64_t>(i));
+    if (mass)
+      s.mass.back() = mass->GetTuple1(i);
+    for (int k = 0; k < 3; ++k) {
+      s.velocity[3 * i + k] = velocity ? velocity->GetComponent(i, k) : 0.0;
+      s.angularVelocity[3 * i + k] = spin ? spin->GetComponent(i, k) : 0.0;
+    }
+  }
+  return s;
+}
+
+inline double fieldScalar(vtkFieldData* fd, const char* name, double fallback) {
+  vtkDataArray* a = fd ? fd->GetArray(name) : nullptr;
+  return a && a->GetNumberOfTuples() > 0 ? a->GetComponent(0, 0) : fallback;
+}
+
+inline std::string fieldString(vtkFieldData* fd, const char* name) {
+  auto* a = fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(name)) : nullptr;
+  return a && a->GetNumberOfValues() > 0 ? a->GetValue(0) : std::string();
+}
+
 inline void addField(vtkFieldData* fd, const char* name, double value) {
+  fd->RemoveArray(name);
   auto array = vtkSmartPointer<vtkDoubleArray>::New();
   array->SetName(name);
   array->InsertNextValue(value);
@@ -85,6 +144,7 @@ inline void addField(vtkFieldData* fd, const char* name, double value) {
 }
 
 inline void addField(vtkFieldData* fd, const char* name, const double* values, int count) {
+  fd->RemoveArray(name);
   auto array = vtkSmartPointer<vtkDoubleArray>::New();
   array->SetName(name);
   array->SetNumberOfComponents(count);
@@ -93,6 +153,7 @@ inline void addField(vtkFieldData* fd, const char* name, const double* values, i
 }
 
 inline void addField(vtkFieldData* fd, const char* name, const std::string& value) {
+  fd->RemoveArray(name);
   auto array = vtkSmartPointer<vtkStringArray>::New();
   array->SetName(name);
   array->InsertNextValue(value);

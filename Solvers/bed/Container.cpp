@@ -54,7 +54,11 @@ bool Container::inside(const double x[3], double margin) const {
     return std::abs(x[0]) <= 0.5 * boxSize[0] - margin &&
            std::abs(x[1]) <= 0.5 * boxSize[1] - margin && x[2] >= -boxSize[2] + margin;
   const double rho = bowlRadius - margin;
-  return rho >= 0.0 && x[0] * x[0] + x[1] * x[1] + x[2] * x[2] <= rho * rho;
+  if (rho < 0.0)
+    return false;
+  // Above the rim (beds filled higher while settling) the wall continues as a cylinder.
+  const double z2 = x[2] > 0.0 ? 0.0 : x[2] * x[2];
+  return x[0] * x[0] + x[1] * x[1] + z2 <= rho * rho;
 }
 
 void Container::project(double x[3], double r) const {
@@ -65,25 +69,35 @@ void Container::project(double x[3], double r) const {
     x[2] = std::clamp(x[2], -boxSize[2] + r, top);
     return;
   }
-  // Ball of radius rho intersected with the half-space z <= top.
+  // C = ball of radius rho continued as a cylinder above z = 0, H = {z <= top}; both convex.
+  // The projection onto C ∩ H is the projection onto C if that lies in H, else the
+  // projection onto H if that lies in C, else the nearest point of the circle ∂C ∩ ∂H.
   const double rho = bowlRadius - r;
-  const double d = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-  if (d <= rho && x[2] <= top)
+  if (inside(x, r))
     return;
-  if (d > rho) { // candidate: projection onto the ball
-    const double s = rho / d;
-    if (x[2] * s <= top) {
-      for (int k = 0; k < 3; ++k)
-        x[k] *= s;
-      return;
+  double c[3] = {x[0], x[1], x[2]};
+  if (c[2] > 0.0) {
+    const double h = std::hypot(c[0], c[1]);
+    if (h > rho) {
+      c[0] *= rho / h;
+      c[1] *= rho / h;
     }
+  } else {
+    const double d = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    if (d > rho)
+      for (int k = 0; k < 3; ++k)
+        c[k] *= rho / d;
   }
-  if (x[2] > top && x[0] * x[0] + x[1] * x[1] + top * top <= rho * rho) { // onto the plane
+  if (c[2] <= top) {
+    std::copy(c, c + 3, x);
+    return;
+  }
+  const double onPlane[3] = {x[0], x[1], top};
+  if (inside(onPlane, r)) {
     x[2] = top;
     return;
   }
-  // Otherwise the nearest point is on the circle where the plane cuts the sphere.
-  const double ring = std::sqrt(std::max(0.0, rho * rho - top * top));
+  const double ring = top > 0.0 ? rho : std::sqrt(std::max(0.0, rho * rho - top * top));
   const double h = std::hypot(x[0], x[1]);
   if (h > 0.0) {
     x[0] *= ring / h;
@@ -101,10 +115,12 @@ double Container::fillVolume(double margin) const {
     v *= std::max(0.0, boxSize[1] - 2 * margin);
     return v * std::max(0.0, surfaceHeight + boxSize[2] - 2 * margin);
   }
-  // Cap of height h = (surfaceHeight - margin) + rho at the bottom of a sphere of radius rho.
-  const double rho = bowlRadius - margin;
-  const double h = std::clamp(surfaceHeight - margin + rho, 0.0, 2.0 * std::max(rho, 0.0));
-  return M_PI * h * h * (3.0 * rho - h) / 3.0;
+  // Cap of height h = (surfaceHeight - margin) + rho at the bottom of a sphere of radius rho,
+  // plus the cylinder above the rim if the surface is above it.
+  const double rho = std::max(bowlRadius - margin, 0.0);
+  const double top = surfaceHeight - margin;
+  const double h = std::clamp(top + rho, 0.0, rho);
+  return M_PI * h * h * (3.0 * rho - h) / 3.0 + M_PI * rho * rho * std::max(top, 0.0);
 }
 
 void Container::bounds(double margin, double lo[3], double hi[3]) const {

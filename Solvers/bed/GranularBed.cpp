@@ -2,6 +2,7 @@
 
 #include "../common/CellList.h"
 #include "../common/Error.h"
+#include "../dem/DemSolver.h"
 
 #include <algorithm>
 #include <cmath>
@@ -83,8 +84,8 @@ ParticleSet hcpBed(const GranularBedParams& p, const ProgressCallback& progress)
 // final size (force-biased inflation): overlaps stay small at every sweep, so the
 // relaxation converges in a few hundred sweeps instead of untangling a dense random
 // start. Returns the number of sweeps.
-int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, double rmax,
-                  const ProgressCallback& progress) {
+int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, const Container& container,
+                  double rmax, bool inflate, const ProgressCallback& progress) {
   const std::size_t n = s.size();
   const double* radius = s.radius.data();
   std::vector<double> shift(3 * n);
@@ -92,11 +93,11 @@ int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, double rmax,
   // Pairs are pushed slightly past contact: it speeds up convergence and leaves no pair
   // overlapping by round-off once the sweep finds none.
   const double spacing = 1.0 + kRelaxSpacing;
-  double scale = std::min(1.0, std::cbrt(kStartFraction / p.packingFraction));
+  double scale = inflate ? std::min(1.0, std::cbrt(kStartFraction / p.packingFraction)) : 1.0;
   const double growth = std::max(1e-4, -std::log(scale) / kGrowthSweeps);
   for (int sweep = 0; sweep < p.maxRelaxationIterations; ++sweep) {
     if (sweep % 16 == 0)
-      reportProgress(progress, 0.1 + 0.9 * std::min(1.0, sweep / (2.0 * kGrowthSweeps)));
+      reportProgress(progress, std::min(1.0, sweep / (2.0 * kGrowthSweeps)));
     double* x = s.position.data();
     cells.build(x, n, 2.0 * rmax);
     double worst = 0.0;
@@ -133,7 +134,7 @@ int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, double rmax,
     for (std::size_t i = 0; i < n; ++i) {
       for (int k = 0; k < 3; ++k)
         x[3 * i + k] += shift[3 * i + k];
-      p.container.project(&x[3 * i], scale * radius[i]);
+      container.project(&x[3 * i], scale * radius[i]);
     }
     // Grow only while the packing keeps up, so that jams are not forced.
     if (worst < kGrowthOverlap)
@@ -146,19 +147,103 @@ int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, double rmax,
   throw InputError(msg.str());
 }
 
+ProgressCallback subRange(const ProgressCallback& progress, double lo, double hi) {
+  if (!progress)
+    return {};
+  return [progress, lo, hi](double f) { return progress(lo + (hi - lo) * f); };
+}
+
+// Settles a loose bed under gravity with the SSDEM solver until its kinetic energy has
+// decayed (PHYSICS.md §7): strong damping, low friction, no rolling resistance.
+ParticleSet settleBed(const ParticleSet& loose, const GranularBedParams& p, const Container& filled,
+                      GranularBedReport& report, const ProgressCallback& progress) {
+  const double g = p.settlingGravity;
+  const double rmin = p.sizes.smallest();
+  const double height = filled.surfaceHeight - filled.floorHeight();
+  DemParams dp;
+  dp.walls = containerWalls(filled);
+  dp.gravity.vector = {0.0, 0.0, -g};
+  dp.contact.restitutionN = dp.contact.restitutionT = 0.3;
+  dp.contact.muS = p.settlingFriction;
+  dp.contact.muR = dp.contact.muT = 0.0;
+  dp.initialOverlapLimit = 0.05;
+  const StiffnessProposal k =
+      proposeStiffness(rmin, p.particleDensity, std::sqrt(2.0 * g * rmin), 0.01, g, height, 25.0);
+  dp.contact.kN = k.kN;
+  dp.dt = k.dt;
+  const double fall = std::sqrt(2.0 * height / g);
+  DemSolver solver(loose, dp);
+
+  // Only the part of the bed that will be kept must come to rest: spheres in the extra fill
+  // above the surface keep rolling on its free slope and are trimmed afterwards.
+  const double keepBelow = p.container.surfaceHeight - 2.0 * p.sizes.largest();
+  double meanMass = 0.0, meanRadius = 0.0;
+  for (std::size_t i = 0; i < loose.size(); ++i) {
+    meanMass += loose.mass[i] / loose.size();
+    meanRadius += loose.radius[i] / loose.size();
+  }
+  const double chunk = std::max(0.05 * fall, 100.0 * dp.dt);
+  const double limit = 40.0 * fall;
+  while (solver.time() < limit) {
+    solver.advanceTo(solver.time() + chunk);
+    reportProgress(progress, std::min(0.99, solver.time() / (4.0 * fall)));
+    const ParticleSet& s = solver.particles();
+    double energy = 0.0;
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (s.position[3 * i + 2] > keepBelow)
+        continue;
+      ++kept;
+      double v2 = 0.0, w2 = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        v2 += s.velocity[3 * i + k] * s.velocity[3 * i + k];
+        w2 += s.angularVelocity[3 * i + k] * s.angularVelocity[3 * i + k];
+      }
+      energy += 0.5 * s.mass[i] * (v2 + 0.4 * s.radius[i] * s.radius[i] * w2);
+    }
+    if (solver.time() > fall && energy < p.settledEnergy * kept * meanMass * g * meanRadius) {
+      report.settled = true;
+      break;
+    }
+  }
+  report.settlingTime = solver.time();
+  report.settlingSteps = solver.stepCount();
+  ParticleSet out = solver.particles();
+  std::fill(out.velocity.begin(), out.velocity.end(), 0.0);
+  std::fill(out.angularVelocity.begin(), out.angularVelocity.end(), 0.0);
+  return out;
+}
+
+// Keeps the particles whose top is at or below the surface, renumbering the ids.
+ParticleSet trimToSurface(const ParticleSet& s, double surface) {
+  ParticleSet out;
+  out.reserve(s.size());
+  std::int64_t next = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.position[3 * i + 2] + s.radius[i] <= surface + 1e-12 * s.radius[i]) {
+      out.add(&s.position[3 * i], s.radius[i], s.density[i], s.material[i], next++);
+      out.mass.back() = s.mass[i];
+    }
+  return out;
+}
+
 ParticleSet randomBed(const GranularBedParams& p, GranularBedReport* report,
                       const ProgressCallback& progress) {
-  const Container& c = p.container;
+  // A settled bed compacts from the loose fraction to ~0.62: fill higher so that it still
+  // reaches the surface afterwards (the bowl's wall continues as a cylinder above its rim).
+  Container c = p.container;
+  if (p.settle) {
+    const double depth = c.surfaceHeight - c.floorHeight();
+    c.surfaceHeight += (0.64 / std::min(p.packingFraction, 0.6) - 1.0) * depth + 2.0 * p.sizes.largest();
+  }
   Random rng(p.seed);
-  // Walls and the flat surface leave a depleted layer (the first layer of centres sits a
-  // radius away from the wall), so the target volume excludes a thin layer: the bulk,
-  // away from walls, then comes out near the requested fraction.
   const double target = p.packingFraction * c.fillVolume(kWallDepletion * p.sizes.moment(1));
   std::vector<double> radii;
   double volume = 0.0;
+  const std::int64_t cap = p.settle ? 2 * p.maxParticles : p.maxParticles;
   while (volume < target) {
-    if (static_cast<std::int64_t>(radii.size()) >= p.maxParticles)
-      checkCap(static_cast<double>(radii.size()) + 1.0, p.maxParticles);
+    if (static_cast<std::int64_t>(radii.size()) >= cap)
+      checkCap(static_cast<double>(radii.size()) + 1.0, cap);
     radii.push_back(p.sizes.sample(rng));
     volume += sphereVolume(radii.back());
   }
@@ -174,11 +259,22 @@ ParticleSet randomBed(const GranularBedParams& p, GranularBedReport* report,
     } while (!c.inside(x, r));
     out.add(x, r, p.particleDensity, p.material, next++);
   }
-  reportProgress(progress, 0.1);
-  const int sweeps = relaxOverlaps(out, p, p.sizes.largest(), progress);
+  const double placeShare = p.settle ? 0.2 : 1.0;
+  const int sweeps = relaxOverlaps(out, p, c, p.sizes.largest(), true, subRange(progress, 0.0, placeShare));
   if (report)
     report->relaxationIterations = sweeps;
-  return out;
+  if (!p.settle)
+    return out;
+  GranularBedReport local;
+  GranularBedReport& rep = report ? *report : local;
+  ParticleSet settled = settleBed(out, p, c, rep, subRange(progress, 0.2, 0.95));
+  ParticleSet trimmed = trimToSurface(settled, p.container.surfaceHeight);
+  if (static_cast<std::int64_t>(trimmed.size()) > p.maxParticles)
+    checkCap(static_cast<double>(trimmed.size()), p.maxParticles);
+  // Settling leaves contacts overlapping by up to ~1 % of a radius; remove those so the
+  // bed is stress-free under any gravity and stiffness it is used with later.
+  relaxOverlaps(trimmed, p, p.container, p.sizes.largest(), false, subRange(progress, 0.95, 1.0));
+  return trimmed;
 }
 
 } // namespace
@@ -206,6 +302,16 @@ void GranularBedParams::validate() const {
   }
   if (maxRelaxationIterations <= 0)
     throw InputError("the relaxation sweep limit must be positive");
+  if (packing == Packing::RCP && settle) {
+    if (!(settlingGravity > 0.0) || !std::isfinite(settlingGravity)) {
+      msg << "SettlingGravity must be positive (got " << settlingGravity << " m/s^2)";
+      throw InputError(msg.str());
+    }
+    if (!(settlingFriction >= 0.0) || !std::isfinite(settlingFriction)) {
+      msg << "SettlingFriction must be non-negative (got " << settlingFriction << ")";
+      throw InputError(msg.str());
+    }
+  }
   checkCap(expectedParticles(*this), maxParticles);
 }
 

@@ -2,7 +2,6 @@
 
 #include "../common/Error.h"
 
-#include <Eigen/Geometry>
 
 #include <sstream>
 
@@ -47,26 +46,34 @@ void carryContactFrame(ContactHistory& h, const Eigen::Vector3d& n, const Eigen:
                        double dt) {
   const Eigen::Vector3d nOld(h.normal[0], h.normal[1], h.normal[2]);
   Eigen::Map<Eigen::Vector3d> S(h.spring), xi(h.rolling);
-  // (a) spin about the mean normal by half the summed spin.
+  // (a) spin about the mean normal by φ = dt/2 (ω_p + ω_n)·n_mean. Cayley form with
+  // q = (φ/2) a: exactly orthogonal, no trigonometry, angle error O(φ³) for the tiny
+  // per-step angles of a resolved contact.
   Eigen::Vector3d mean = nOld + n;
-  const double len = mean.norm();
-  if (len > 0.0) {
-    mean /= len;
-    const double angle = 0.5 * dt * omegaSum.dot(mean);
-    if (angle != 0.0) {
-      const Eigen::AngleAxisd spin(angle, mean);
-      S = spin * S;
-      xi = spin * xi;
+  const double len2 = mean.squaredNorm();
+  if (len2 > 0.0) {
+    mean /= std::sqrt(len2);
+    const Eigen::Vector3d q = (0.25 * dt * omegaSum.dot(mean)) * mean;
+    const double q2 = q.squaredNorm();
+    if (q2 > 0.0) {
+      const double f = 2.0 / (1.0 + q2);
+      const Eigen::Vector3d qS = q.cross(S), qX = q.cross(xi);
+      S += f * (qS + q.cross(qS));
+      xi += f * (qX + q.cross(qX));
     }
   }
-  // (b) the rotation taking the old normal to the new one.
-  const Eigen::Vector3d axis = nOld.cross(n);
-  const double s = axis.norm(), c = nOld.dot(n);
-  if (s > 0.0) {
-    const Eigen::AngleAxisd tilt(std::atan2(s, c), axis / s);
-    S = tilt * S;
-    xi = tilt * xi;
+  // (b) the rotation taking n_old to n (Rodrigues with k = n_old x n, c = n_old·n):
+  // R v = c v + k x v + (k·v) k / (1 + c).
+  const Eigen::Vector3d k = nOld.cross(n);
+  const double c = nOld.dot(n);
+  if (k.squaredNorm() > 0.0 && c > -1.0) {
+    const double f = 1.0 / (1.0 + c);
+    S = c * S + k.cross(S) + (f * k.dot(S)) * k;
+    xi = c * xi + k.cross(xi) + (f * k.dot(xi)) * k;
   }
+  // Keep the histories in the tangent plane against round-off drift.
+  S -= S.dot(n) * n;
+  xi -= xi.dot(n) * n;
 }
 
 StiffnessProposal proposeStiffness(double rmin, double density, double vmax, double overlapFraction,

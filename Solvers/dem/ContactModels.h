@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <limits>
@@ -37,12 +38,16 @@ struct ContactParams {
   void validate() const; // throws InputError naming the bad coefficient
 };
 
-// Damping coefficient C = 2 sqrt(k mu) (-ln e) / sqrt(pi^2 + ln^2 e) (Schwartz 2012 Eq. 15).
-inline double dashpotCoefficient(double k, double restitution, double reducedMass) {
+// Damping coefficient C = 2 sqrt(k mu) (-ln e) / sqrt(pi^2 + ln^2 e) (Schwartz 2012 Eq. 15),
+// split into the restitution factor (computed once per run) and sqrt(k mu).
+inline double dashpotFactor(double restitution) {
   if (restitution >= 1.0)
     return 0.0;
   const double l = std::log(std::max(restitution, 1e-12));
-  return 2.0 * std::sqrt(k * reducedMass) * (-l) / std::sqrt(M_PI * M_PI + l * l);
+  return 2.0 * (-l) / std::sqrt(M_PI * M_PI + l * l);
+}
+inline double dashpotCoefficient(double k, double restitution, double reducedMass) {
+  return dashpotFactor(restitution) * std::sqrt(k * reducedMass);
 }
 
 // History of one contact, carried in the contact frame between steps.
@@ -81,10 +86,11 @@ struct ContactResult {
 // springs, the dashpot coefficient, and the stored elastic energy.
 struct LinearSpringDashpot {
   static constexpr const char* name = "LinearSpringDashpot";
-  double kN, restitution;
+  LinearSpringDashpot(double k, double restitution) : kN(k), factor(dashpotFactor(restitution)) {}
+  double kN, factor;
   double elastic(double x, double) const { return kN * x; }
   double stiffness(double, double) const { return kN; }
-  double damping(double, double, double mu) const { return dashpotCoefficient(kN, restitution, mu); }
+  double damping(double, double, double mu) const { return factor * std::sqrt(kN * mu); }
   double energy(double x, double) const { return 0.5 * kN * x * x; }
 };
 
@@ -92,17 +98,12 @@ struct Hertz {
   static constexpr const char* name = "Hertz";
   // E* = E / (2 (1 - ν^2)) between two particles of one material, E / (1 - ν^2) against a
   // rigid wall.
-  double effectiveModulus;
-  double restitution;
+  Hertz(double modulus, double restitution)
+      : effectiveModulus(modulus), factor(std::sqrt(5.0 / 6.0) * dashpotFactor(restitution)) {}
+  double effectiveModulus, factor;
   double elastic(double x, double r) const { return 4.0 / 3.0 * effectiveModulus * std::sqrt(r * x) * x; }
   double stiffness(double x, double r) const { return 2.0 * effectiveModulus * std::sqrt(r * x); }
-  double damping(double x, double r, double mu) const {
-    if (restitution >= 1.0)
-      return 0.0;
-    const double l = std::log(std::max(restitution, 1e-12));
-    const double b = -l / std::sqrt(l * l + M_PI * M_PI);
-    return 2.0 * std::sqrt(5.0 / 6.0) * b * std::sqrt(stiffness(x, r) * mu);
-  }
+  double damping(double x, double r, double mu) const { return factor * std::sqrt(stiffness(x, r) * mu); }
   double energy(double x, double r) const {
     return 8.0 / 15.0 * effectiveModulus * std::sqrt(r) * std::pow(x, 2.5);
   }
@@ -112,10 +113,18 @@ struct Hertz {
 void carryContactFrame(ContactHistory& h, const Eigen::Vector3d& n, const Eigen::Vector3d& omegaSum,
                        double dt);
 
+// Constants of the friction part, computed once per force evaluation.
+struct FrictionConstants {
+  explicit FrictionConstants(const ContactParams& p)
+      : kT(p.tangentialStiffness()), dampingT(dashpotFactor(p.restitutionT)) {}
+  double kT, dampingT;
+};
+
 // One contact: normal law + SSDEM tangential, rolling and twisting resistance.
 template <class Normal>
-ContactResult ssdemContact(const Normal& law, const ContactParams& p, double kT, const ContactState& c,
-                           ContactHistory& h, double dt) {
+ContactResult ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants& fc,
+                           const ContactState& c, ContactHistory& h, double dt) {
+  const double kT = fc.kT;
   ContactResult out;
   const Eigen::Vector3d& n = c.n;
   const double un = c.u.dot(n);
@@ -134,7 +143,7 @@ ContactResult ssdemContact(const Normal& law, const ContactParams& p, double kT,
     carryContactFrame(h, n, c.omegaSum, dt);
   Eigen::Map<Eigen::Vector3d> S(h.spring), xiR(h.rolling);
   // Tangential spring and Coulomb slider; pkdgrav zeroes the spring when it slips.
-  const double cT = dashpotCoefficient(kT, p.restitutionT, c.reducedMass);
+  const double cT = fc.dampingT * std::sqrt(kT * c.reducedMass);
   S += uT * dt;
   Eigen::Vector3d fT = kT * S + cT * uT;
   const double fTmax = p.muS * fNmag;

@@ -326,7 +326,7 @@ void DemSolver::computeForces() {
 
 template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const Law& wallLaw) {
   const ContactParams& cp = params_.contact;
-  const double kT = cp.tangentialStiffness();
+  const FrictionConstants fc(cp);
   const double dt = params_.dt;
   const ParticleSet& s = state_;
   const double* x = s.position.data();
@@ -360,7 +360,7 @@ template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const
     st.omegaSum = wi + wj;
     st.reducedMass = m[i] * m[j] / (m[i] + m[j]);
     st.reducedRadius = r[i] * r[j] / sum;
-    const ContactResult res = ssdemContact(pairLaw, cp, kT, st, pairHistory_[k], dt);
+    const ContactResult res = ssdemContact(pairLaw, cp, fc, st, pairHistory_[k], dt);
     put(pairForce_, k, res.force);
     put(pairTorqueI_, k, res.torqueP);
     put(pairTorqueJ_, k, res.torqueN);
@@ -406,7 +406,7 @@ template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const
       st.omegaSum = wi;
       st.reducedMass = m[i];
       st.reducedRadius = r[i];
-      const ContactResult res = ssdemContact(wallLaw, cp, kT, st, h, dt);
+      const ContactResult res = ssdemContact(wallLaw, cp, fc, st, h, dt);
       f += res.force;
       t += res.torqueP;
       wallActive_[i * walls + w] = 1;

@@ -23,7 +23,7 @@ t.check(len(xml_files) > 0, "no XML files found")
 def printed_values(obj):
     values = {}
     for line in str(obj).splitlines():
-        key, sep, value = line.strip().partition(": ")
+        key, sep, value = line.strip().partition(":")
         if sep:
             values[key] = value.strip()
     return values

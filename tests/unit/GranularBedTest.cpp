@@ -12,9 +12,11 @@ using namespace craterkit;
 
 namespace {
 
+// Loose random placement unless a test asks for settling (which runs the DEM).
 GranularBedParams smallBowl(GranularBedParams::Packing packing) {
   GranularBedParams p;
   p.packing = packing;
+  p.settle = false;
   p.container.type = Container::Type::Bowl;
   p.container.bowlRadius = 4.0;
   p.sizes.radius = 0.5;
@@ -24,6 +26,7 @@ GranularBedParams smallBowl(GranularBedParams::Packing packing) {
 GranularBedParams smallBox(GranularBedParams::Packing packing) {
   GranularBedParams p;
   p.packing = packing;
+  p.settle = false;
   p.container.type = Container::Type::Box;
   p.container.boxSize = {6.0, 5.0, 4.0};
   p.container.surfaceHeight = 0.5;
@@ -147,6 +150,38 @@ TEST(GranularBed, RandomBulkPackingIsLooseButAboveHalf) {
   EXPECT_GE(report.bulkPackingFraction, 0.50);
   EXPECT_LE(report.bulkPackingFraction, 0.64);
   EXPECT_EQ(report.particles, bed.size());
+}
+
+TEST(GranularBed, SettledRandomBedIsDenseWithoutOverlaps) {
+  // Monodisperse RCP settled under gravity with the DEM: bulk 0.58-0.64, no overlaps,
+  // inside the container, top layer reaching the surface.
+  for (auto p : {smallBowl(GranularBedParams::Packing::RCP), smallBox(GranularBedParams::Packing::RCP)}) {
+    p.settle = true;
+    GranularBedReport report;
+    const ParticleSet bed = generateGranularBed(p, &report);
+    EXPECT_TRUE(report.settled);
+    EXPECT_GT(report.settlingSteps, 100);
+    EXPECT_LE(bruteForceWorstOverlap(bed), 0.0);
+    expectInsideContainer(bed, p.container);
+    const double phi = measurePackingFraction(bed, p.container, 2.0 * p.sizes.radius, 400000);
+    EXPECT_GE(phi, 0.58) << Container::typeName(p.container.type);
+    EXPECT_LE(phi, 0.645) << Container::typeName(p.container.type);
+    EXPECT_GT(report.topHeight, p.container.surfaceHeight - 1.0 * p.sizes.radius);
+    EXPECT_LE(report.topHeight, p.container.surfaceHeight + 1e-9);
+    for (double v : bed.velocity)
+      ASSERT_EQ(v, 0.0);
+  }
+}
+
+TEST(GranularBed, SettlingFrictionLoosensThePacking) {
+  auto p = smallBox(GranularBedParams::Packing::RCP);
+  p.settle = true;
+  p.settlingFriction = 0.0;
+  const ParticleSet smooth = generateGranularBed(p);
+  p.settlingFriction = 0.8;
+  const ParticleSet rough = generateGranularBed(p);
+  EXPECT_GT(measurePackingFraction(smooth, p.container, 1.0, 400000),
+            measurePackingFraction(rough, p.container, 1.0, 400000) + 0.01);
 }
 
 TEST(GranularBed, SizeDistributionMatchesItsParameters) {
@@ -286,35 +321,39 @@ TEST(GranularBed, ProgressCanAbort) {
 }
 
 TEST(Container, ProjectionIsNearestFeasiblePoint) {
-  // Compare the bowl projection with a brute-force search over feasible points.
+  // Compare the bowl projection with a brute-force search over feasible points, for a
+  // surface below the rim and one above it (the wall continues as a cylinder).
+  for (double surface : {-0.5, 1.0}) {
   Container c;
   c.type = Container::Type::Bowl;
   c.bowlRadius = 3.0;
-  c.surfaceHeight = -0.5;
+  c.surfaceHeight = surface;
   const double r = 0.4;
   Random rng(3);
-  for (int trial = 0; trial < 200; ++trial) {
+  for (int trial = 0; trial < 300; ++trial) {
     double x[3] = {rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-4, 2)};
     double p[3] = {x[0], x[1], x[2]};
     c.project(p, r);
     ASSERT_TRUE(c.inside(p, r * (1 - 1e-12)));
     const double dp = std::sqrt(std::pow(p[0] - x[0], 2) + std::pow(p[1] - x[1], 2) + std::pow(p[2] - x[2], 2));
-    for (int s = 0; s < 2000; ++s) {
-      double y[3] = {rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-3, 0)};
+    for (int s = 0; s < 3000; ++s) {
+      double y[3] = {rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-3, 1)};
       if (!c.inside(y, r))
         continue;
       const double dy = std::sqrt(std::pow(y[0] - x[0], 2) + std::pow(y[1] - x[1], 2) + std::pow(y[2] - x[2], 2));
-      ASSERT_GE(dy, dp - 1e-9);
+      ASSERT_GE(dy, dp - 1e-9) << "surface " << surface;
     }
+  }
   }
 }
 
 TEST(Container, FillVolumeMatchesMonteCarlo) {
-  for (auto type : {Container::Type::Box, Container::Type::Bowl}) {
+  for (auto type : {Container::Type::Box, Container::Type::Bowl, Container::Type::Bowl}) {
+    static int round = 0;
     Container c;
     c.type = type;
     c.bowlRadius = 2.0;
-    c.surfaceHeight = -0.3;
+    c.surfaceHeight = round++ == 2 ? 0.7 : -0.3; // last: a bowl filled above its rim
     c.boxSize = {2.0, 3.0, 1.0};
     double lo[3], hi[3];
     c.bounds(0.0, lo, hi);
