@@ -37,6 +37,9 @@ int vtkCraterKitGranularBed::RequestData(
   p.material = this->Material;
   p.seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
   p.maxParticles = this->MaxParticles;
+  p.settle = this->Settle != 0;
+  p.settlingGravity = this->SettlingGravity;
+  p.settlingFriction = this->SettlingFriction;
 
   ParticleSet bed;
   GranularBedReport report;
@@ -60,6 +63,16 @@ int vtkCraterKitGranularBed::RequestData(
   bridge::addField(fd, "BulkPackingFraction", report.bulkPackingFraction);
   bridge::addField(fd, "TopHeight", report.topHeight);
   bridge::addField(fd, "NumberOfParticles", static_cast<double>(report.particles));
+  if (p.packing == GranularBedParams::Packing::RCP && p.settle)
+  {
+    bridge::addField(fd, "Settled", report.settled ? 1.0 : 0.0);
+    bridge::addField(fd, "SettlingTime", report.settlingTime);
+    bridge::addField(fd, "SettlingSteps", static_cast<double>(report.settlingSteps));
+    bridge::addField(fd, "SettlingGravity", p.settlingGravity);
+    if (!report.settled)
+      vtkWarningMacro(<< "the bed was still moving after " << report.settlingTime
+                      << " s of settling; its packing may be looser than a settled one");
+  }
   return 1;
 }
 
@@ -84,4 +97,7 @@ void vtkCraterKitGranularBed::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Material: " << this->Material << "\n";
   os << indent << "RandomSeed: " << this->RandomSeed << "\n";
   os << indent << "MaxParticles: " << this->MaxParticles << "\n";
+  os << indent << "Settle: " << this->Settle << "\n";
+  os << indent << "SettlingGravity: " << this->SettlingGravity << "\n";
+  os << indent << "SettlingFriction: " << this->SettlingFriction << "\n";
 }

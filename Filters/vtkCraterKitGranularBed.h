@@ -56,6 +56,12 @@ public:
   vtkGetMacro(RandomSeed, int);
   vtkSetMacro(MaxParticles, int);
   vtkGetMacro(MaxParticles, int);
+  vtkSetMacro(Settle, int);
+  vtkGetMacro(Settle, int);
+  vtkSetMacro(SettlingGravity, double);
+  vtkGetMacro(SettlingGravity, double);
+  vtkSetMacro(SettlingFriction, double);
+  vtkGetMacro(SettlingFriction, double);
 
 protected:
   vtkCraterKitGranularBed();
@@ -77,6 +83,9 @@ protected:
   int Material = 0;
   int RandomSeed = 1;
   int MaxParticles = 2000000;
+  int Settle = 1;
+  double SettlingGravity = 9.81;
+  double SettlingFriction = 0.1;
 
 private:
   vtkCraterKitGranularBed(const vtkCraterKitGranularBed&) = delete;

@@ -543,6 +543,67 @@ long long DemSolver::advanceTo(double endTime, const ProgressCallback& progress,
 }
 
 // ---------------------------------------------------------------------------------------------
+std::size_t DemSolver::removeParticles(const std::vector<char>& remove) {
+  if (remove.size() != n_)
+    throw InputError("removeParticles: one flag per particle is needed");
+  std::vector<std::uint32_t> newIndex(n_);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n_; ++i)
+    newIndex[i] = remove[i] ? ~0u : static_cast<std::uint32_t>(kept++);
+  if (kept == n_)
+    return 0;
+  if (kept == 0)
+    throw InputError("removeParticles: cannot remove every particle");
+  const std::size_t walls = params_.walls.size();
+  auto compact = [&](auto& v, std::size_t width) {
+    std::size_t o = 0;
+    for (std::size_t i = 0; i < n_; ++i)
+      if (!remove[i]) {
+        for (std::size_t k = 0; k < width; ++k)
+          v[o * width + k] = v[i * width + k];
+        ++o;
+      }
+    v.resize(kept * width);
+  };
+  ParticleSet& s = state_;
+  compact(s.position, 3);
+  compact(s.velocity, 3);
+  compact(s.angularVelocity, 3);
+  compact(s.radius, 1);
+  compact(s.mass, 1);
+  compact(s.density, 1);
+  compact(s.material, 1);
+  compact(s.id, 1);
+  compact(inertia_, 1);
+  compact(acc_, 3);
+  compact(alpha_, 3);
+  compact(vPred_, 3);
+  compact(wPred_, 3);
+  compact(wallHistory_, walls);
+  compact(wallActive_, walls);
+  // Renumber the pairs; the map is increasing, so the list stays sorted.
+  std::size_t o = 0;
+  for (std::size_t k = 0; k < pairI_.size(); ++k) {
+    if (remove[pairI_[k]] || remove[pairJ_[k]])
+      continue;
+    pairI_[o] = newIndex[pairI_[k]];
+    pairJ_[o] = newIndex[pairJ_[k]];
+    pairHistory_[o] = pairHistory_[k];
+    pairActive_[o] = pairActive_[k];
+    ++o;
+  }
+  pairI_.resize(o);
+  pairJ_.resize(o);
+  pairHistory_.resize(o);
+  pairActive_.resize(o);
+  const std::size_t removed = n_ - kept;
+  n_ = kept;
+  rmax_ = *std::max_element(s.radius.begin(), s.radius.end());
+  buildNeighbourList(); // also rebuilds the per-particle pair indices
+  return removed;
+}
+
+// ---------------------------------------------------------------------------------------------
 DemDiagnostics DemSolver::diagnostics() const {
   DemDiagnostics d;
   d.time = time_;
@@ -743,7 +804,7 @@ DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t available) {
   for (std::uint64_t k = 0; k < walls; ++k) {
     Wall wall;
     const auto type = r.pod<std::int32_t>("wall type");
-    if (type < 0 || type > 2)
+    if (type < 0 || type > 3)
       throw InputError("checkpoint corrupt: unknown wall type");
     wall.type = static_cast<Wall::Type>(type);
     wall.point = r.pod<std::array<double, 3>>("wall");

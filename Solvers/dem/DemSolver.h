@@ -94,6 +94,10 @@ public:
   // Particle index pairs (i < j) in contact now, and (particle, wall) contacts.
   std::vector<std::pair<std::size_t, std::size_t>> contactPairs() const;
 
+  // Removes the particles flagged non-zero (e.g. ejecta that left the domain), keeping the
+  // order and the contact histories of the others. Returns how many were removed.
+  std::size_t removeParticles(const std::vector<char>& remove);
+
   void writeCheckpoint(std::ostream& out) const;
   void writeCheckpoint(const std::string& path) const;
   static DemSolver readCheckpoint(std::istream& in, std::uint64_t available);

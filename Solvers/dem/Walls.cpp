@@ -21,8 +21,10 @@ std::string Wall::typeName(Type t) {
     return "Plane";
   case Type::Bowl:
     return "Bowl";
-  default:
+  case Type::Cylinder:
     return "Cylinder";
+  default:
+    return "Disk";
   }
 }
 
@@ -54,6 +56,16 @@ Wall Wall::cylinder(std::array<double, 3> p, std::array<double, 3> axis, double 
   return w;
 }
 
+Wall Wall::disk(std::array<double, 3> c, std::array<double, 3> n, double r) {
+  Wall w;
+  w.type = Type::Disk;
+  w.point = c;
+  w.radius = r;
+  w.normal = unit(n, "normal");
+  w.validate();
+  return w;
+}
+
 void Wall::validate() const {
   for (int k = 0; k < 3; ++k)
     if (!std::isfinite(point[k]) || !std::isfinite(normal[k]))
@@ -74,6 +86,32 @@ double Wall::overlap(const double x[3], double r, double n[3], double& lever) co
       n[k] = -normal[k];
     lever = along;
     return r - along;
+  case Type::Disk: {
+    // A thin disk: the contact is with its closest point (face or rim), so particles
+    // sliding over the edge or hitting it from the side are handled smoothly.
+    double q[3], radial2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      q[k] = d[k] - along * normal[k];
+      radial2 += q[k] * q[k];
+    }
+    if (radial2 > radius * radius) {
+      const double f = radius / std::sqrt(radial2);
+      for (int k = 0; k < 3; ++k)
+        q[k] *= f;
+    }
+    double dist2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      n[k] = q[k] - d[k];
+      dist2 += n[k] * n[k];
+    }
+    const double dist = std::sqrt(dist2);
+    if (!(dist < r) || dist == 0.0)
+      return -1.0;
+    for (int k = 0; k < 3; ++k)
+      n[k] /= dist;
+    lever = dist;
+    return r - dist;
+  }
   case Type::Bowl: {
     if (along > 0.0) // above the rim plane: the bowl is open
       return -1.0;
@@ -85,7 +123,7 @@ double Wall::overlap(const double x[3], double r, double n[3], double& lever) co
     lever = radius - dist;
     return r - lever;
   }
-  default: {
+  case Type::Cylinder: {
     double rho[3];
     for (int k = 0; k < 3; ++k)
       rho[k] = d[k] - along * normal[k];
@@ -98,6 +136,7 @@ double Wall::overlap(const double x[3], double r, double n[3], double& lever) co
     return r - lever;
   }
   }
+  return -1.0;
 }
 
 std::vector<Wall> containerWalls(const Container& c) {

@@ -1,5 +1,6 @@
 // Container walls for the DEM, after pkdgrav's wall types (docs/walls.tex): an infinite
-// plane, a hemispherical bowl (inside of the lower half of a sphere, open at the top) and an
+// plane, a thin flat disk (contact with its closest point, face or rim),
+// a hemispherical bowl (inside of the lower half of a sphere, open at the top) and an
 // infinite cylinder (inside). A particle touching a wall feels the same contact law as a
 // particle pair, with the wall as an immovable partner of infinite mass and radius.
 #pragma once
@@ -13,16 +14,17 @@
 namespace craterkit {
 
 struct Wall {
-  enum class Type { Plane = 0, Bowl = 1, Cylinder = 2 };
+  enum class Type { Plane = 0, Bowl = 1, Cylinder = 2, Disk = 3 };
   Type type = Type::Plane;
-  std::array<double, 3> point{0, 0, 0};  // plane: a point; bowl: centre; cylinder: axis point
-  std::array<double, 3> normal{0, 0, 1}; // plane: unit normal into the domain; cylinder: axis;
-                                         // bowl: "up", the bowl is the half below its centre
-  double radius = 0.0;                   // bowl and cylinder
+  std::array<double, 3> point{0, 0, 0};  // plane: a point; disk, bowl: centre; cylinder: axis point
+  std::array<double, 3> normal{0, 0, 1}; // plane, disk: unit normal into the domain; cylinder:
+                                         // axis; bowl: "up", the bowl is the half below its centre
+  double radius = 0.0;                   // disk, bowl and cylinder
 
   static Wall plane(std::array<double, 3> point, std::array<double, 3> normal);
   static Wall bowl(std::array<double, 3> centre, double radius, std::array<double, 3> up = {0, 0, 1});
   static Wall cylinder(std::array<double, 3> axisPoint, std::array<double, 3> axis, double radius);
+  static Wall disk(std::array<double, 3> centre, std::array<double, 3> normal, double radius);
 
   // Overlap of a sphere (centre x, radius r) with the wall; > 0 means contact. Also returns
   // the unit normal from the particle towards the wall and the distance from the centre to
