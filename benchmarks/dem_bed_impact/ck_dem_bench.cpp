@@ -1,0 +1,104 @@
+// CraterKit side of the DEM bed-impact benchmark (see run.py beside this file).
+//   ck_dem_bench make-bed FILE PARTICLES   settle a monodisperse RCP bed in a box, write it
+//   ck_dem_bench run FILE STEPS            add the impactor, run STEPS steps, print timings
+// Both print one JSON object on the last line.
+#include "bed/GranularBed.h"
+#include "dem/DemSolver.h"
+#include "dem/Impactor.h"
+
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+using namespace craterkit;
+
+namespace {
+constexpr double kRadius = 0.05, kDensity = 2000.0, kGravity = 9.81, kSpeed = 1.0;
+
+struct Box {
+  double side, depth;
+};
+
+Box boxFor(double particles) {
+  // N ≈ 0.62 L * L * (L/2) / (4/3 π r^3)
+  const double side = std::cbrt(particles * 4.0 / 3.0 * M_PI * std::pow(kRadius, 3) / (0.62 * 0.5));
+  return {side, 0.5 * side};
+}
+} // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 4) {
+    std::cerr << "usage: ck_dem_bench make-bed FILE PARTICLES | run FILE STEPS\n";
+    return 2;
+  }
+  const std::string mode = argv[1], file = argv[2];
+  if (mode == "make-bed") {
+    const Box box = boxFor(std::atof(argv[3]));
+    GranularBedParams p;
+    p.container.type = Container::Type::Box;
+    p.container.boxSize = {box.side, box.side, box.depth};
+    p.sizes.radius = kRadius;
+    p.particleDensity = kDensity;
+    GranularBedReport report;
+    int last = -1;
+    const ParticleSet bed = generateGranularBed(p, &report, [&](double f) {
+      if (static_cast<int>(f * 20) != last) {
+        last = static_cast<int>(f * 20);
+        std::fprintf(stderr, "  settling the bed: %3.0f %%\n", 100 * f);
+      }
+      return true;
+    });
+    std::ofstream out(file);
+    out.precision(17);
+    out << box.side << " " << box.depth << "\n";
+    for (std::size_t i = 0; i < bed.size(); ++i)
+      out << bed.position[3 * i] << " " << bed.position[3 * i + 1] << " " << bed.position[3 * i + 2] << "\n";
+    std::printf("{\"particles\": %zu, \"bulk_packing_fraction\": %.4f, \"side\": %.6f, \"depth\": %.6f}\n",
+                bed.size(), report.bulkPackingFraction, box.side, box.depth);
+    return 0;
+  }
+  if (mode != "run")
+    return 2;
+  const long steps = std::atol(argv[3]);
+  std::ifstream in(file);
+  Box box{};
+  in >> box.side >> box.depth;
+  ParticleSet s;
+  double x[3];
+  while (in >> x[0] >> x[1] >> x[2])
+    s.add(x, kRadius, kDensity, 0, static_cast<std::int64_t>(s.size()));
+  ImpactorParams imp;
+  imp.radius = 2.0 * kRadius;
+  imp.density = kDensity;
+  imp.speed = kSpeed;
+  addImpactor(s, imp);
+
+  DemParams p;
+  Container c;
+  c.type = Container::Type::Box;
+  c.boxSize = {box.side, box.side, box.depth};
+  p.walls = containerWalls(c);
+  p.gravity.vector = {0.0, 0.0, -kGravity};
+  const StiffnessProposal k = proposeStiffness(kRadius, kDensity, kSpeed, 0.01, kGravity, box.depth, 30.0);
+  p.contact.kN = k.kN;
+  p.dt = k.dt;
+  DemSolver solver(s, p);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (long i = 0; i < steps; ++i)
+    solver.step();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double m = kDensity * 4.0 / 3.0 * M_PI * std::pow(kRadius, 3);
+  std::printf("{\"code\": \"CraterKit\", \"threads\": %d, \"particles\": %zu, \"steps\": %ld, "
+              "\"seconds\": %.4f, \"kn\": %.17g, \"dt\": %.17g, \"mass\": %.17g, \"radius\": %.17g, "
+              "\"impactor_radius\": %.17g, \"speed\": %.17g, \"side\": %.17g, \"depth\": %.17g, "
+              "\"builds\": %zu, \"contacts\": %zu}\n",
+              omp_get_max_threads(), s.size(), steps, seconds, k.kN, k.dt, m, kRadius, imp.radius, kSpeed,
+              box.side, box.depth, solver.neighbourBuilds(), solver.diagnostics().contacts);
+  return 0;
+}
