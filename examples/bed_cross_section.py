@@ -26,7 +26,7 @@ def parse_args(argv):
     p.add_argument("--container", choices=["Bowl", "Box"], default="Bowl")
     p.add_argument("--container-radius", type=float, default=15.0,
                    help="bowl radius in m (the box is 2R x 2R x R)")
-    p.add_argument("--particle-radius", type=float, default=0.5, help="m")
+    p.add_argument("--particle-radius", type=float, default=0.6, help="m")
     p.add_argument("--particles", type=int, default=None,
                    help="approximate particle count; sets the particle radius")
     p.add_argument("--packing-fraction", type=float, default=0.56, help="RCP placement")

@@ -42,40 +42,6 @@ void ContactParams::validate() const {
   }
 }
 
-void carryContactFrame(ContactHistory& h, const Eigen::Vector3d& n, const Eigen::Vector3d& omegaSum,
-                       double dt) {
-  const Eigen::Vector3d nOld(h.normal[0], h.normal[1], h.normal[2]);
-  Eigen::Map<Eigen::Vector3d> S(h.spring), xi(h.rolling);
-  // (a) spin about the mean normal by φ = dt/2 (ω_p + ω_n)·n_mean. Cayley form with
-  // q = (φ/2) a: exactly orthogonal, no trigonometry, angle error O(φ³) for the tiny
-  // per-step angles of a resolved contact.
-  Eigen::Vector3d mean = nOld + n;
-  const double len2 = mean.squaredNorm();
-  if (len2 > 0.0) {
-    mean /= std::sqrt(len2);
-    const Eigen::Vector3d q = (0.25 * dt * omegaSum.dot(mean)) * mean;
-    const double q2 = q.squaredNorm();
-    if (q2 > 0.0) {
-      const double f = 2.0 / (1.0 + q2);
-      const Eigen::Vector3d qS = q.cross(S), qX = q.cross(xi);
-      S += f * (qS + q.cross(qS));
-      xi += f * (qX + q.cross(qX));
-    }
-  }
-  // (b) the rotation taking n_old to n (Rodrigues with k = n_old x n, c = n_old·n):
-  // R v = c v + k x v + (k·v) k / (1 + c).
-  const Eigen::Vector3d k = nOld.cross(n);
-  const double c = nOld.dot(n);
-  if (k.squaredNorm() > 0.0 && c > -1.0) {
-    const double f = 1.0 / (1.0 + c);
-    S = c * S + k.cross(S) + (f * k.dot(S)) * k;
-    xi = c * xi + k.cross(xi) + (f * k.dot(xi)) * k;
-  }
-  // Keep the histories in the tangent plane against round-off drift.
-  S -= S.dot(n) * n;
-  xi -= xi.dot(n) * n;
-}
-
 StiffnessProposal proposeStiffness(double rmin, double density, double vmax, double overlapFraction,
                                    double gravity, double bedHeight, double stepsPerCollision) {
   if (!(rmin > 0.0) || !(density > 0.0) || !(overlapFraction > 0.0) || !(stepsPerCollision > 0.0))

@@ -86,11 +86,12 @@ struct ContactResult {
 // springs, the dashpot coefficient, and the stored elastic energy.
 struct LinearSpringDashpot {
   static constexpr const char* name = "LinearSpringDashpot";
-  LinearSpringDashpot(double k, double restitution) : kN(k), factor(dashpotFactor(restitution)) {}
-  double kN, factor;
+  LinearSpringDashpot(double k, double restitution)
+      : kN(k), factor(dashpotFactor(restitution) * std::sqrt(k)) {}
+  double kN, factor; // factor includes sqrt(k_N)
   double elastic(double x, double) const { return kN * x; }
   double stiffness(double, double) const { return kN; }
-  double damping(double, double, double mu) const { return factor * std::sqrt(kN * mu); }
+  double damping(double, double, double mu) const { return factor * std::sqrt(mu); }
   double energy(double x, double) const { return 0.5 * kN * x * x; }
 };
 
@@ -109,15 +110,48 @@ struct Hertz {
   }
 };
 
-// Rotates history vectors with the contact frame (PHYSICS.md §1.3 (a)-(b)).
-void carryContactFrame(ContactHistory& h, const Eigen::Vector3d& n, const Eigen::Vector3d& omegaSum,
-                       double dt);
+// Rotates history vectors with the contact frame (PHYSICS.md §1.3 (a)-(b)); inline: it runs
+// for every contact at every step.
+inline void carryContactFrame(ContactHistory& h, const Eigen::Vector3d& n, const Eigen::Vector3d& omegaSum,
+                       double dt) {
+  const Eigen::Vector3d nOld(h.normal[0], h.normal[1], h.normal[2]);
+  Eigen::Map<Eigen::Vector3d> S(h.spring), xi(h.rolling);
+  // (a) spin about the mean normal by φ = dt/2 (ω_p + ω_n)·n_mean. Cayley form with
+  // q = (φ/2) a: exactly orthogonal, no trigonometry, angle error O(φ³) for the tiny
+  // per-step angles of a resolved contact.
+  Eigen::Vector3d mean = nOld + n;
+  const double len2 = mean.squaredNorm();
+  if (len2 > 0.0) {
+    mean /= std::sqrt(len2);
+    const Eigen::Vector3d q = (0.25 * dt * omegaSum.dot(mean)) * mean;
+    const double q2 = q.squaredNorm();
+    if (q2 > 0.0) {
+      const double f = 2.0 / (1.0 + q2);
+      const Eigen::Vector3d qS = q.cross(S), qX = q.cross(xi);
+      S += f * (qS + q.cross(qS));
+      xi += f * (qX + q.cross(qX));
+    }
+  }
+  // (b) the rotation taking n_old to n (Rodrigues with k = n_old x n, c = n_old·n):
+  // R v = c v + k x v + (k·v) k / (1 + c).
+  const Eigen::Vector3d k = nOld.cross(n);
+  const double c = nOld.dot(n);
+  if (k.squaredNorm() > 0.0 && c > -1.0) {
+    const double f = 1.0 / (1.0 + c);
+    S = c * S + k.cross(S) + (f * k.dot(S)) * k;
+    xi = c * xi + k.cross(xi) + (f * k.dot(xi)) * k;
+  }
+  // Keep the histories in the tangent plane against round-off drift.
+  S -= S.dot(n) * n;
+  xi -= xi.dot(n) * n;
+}
+
 
 // Constants of the friction part, computed once per force evaluation.
 struct FrictionConstants {
   explicit FrictionConstants(const ContactParams& p)
-      : kT(p.tangentialStiffness()), dampingT(dashpotFactor(p.restitutionT)) {}
-  double kT, dampingT;
+      : kT(p.tangentialStiffness()), dampingT(dashpotFactor(p.restitutionT)), sqrtKT(std::sqrt(kT)) {}
+  double kT, dampingT, sqrtKT;
 };
 
 // One contact: normal law + SSDEM tangential, rolling and twisting resistance.
@@ -131,23 +165,25 @@ ContactResult ssdemContact(const Normal& law, const ContactParams& p, const Fric
   const Eigen::Vector3d uN = un * n;
   const Eigen::Vector3d uT = c.u - uN;
   const double cN = law.damping(c.overlap, c.reducedRadius, c.reducedMass);
-  Eigen::Vector3d fN = -law.elastic(c.overlap, c.reducedRadius) * n + cN * uN;
+  // F_N is along n: keep its signed magnitude (spring, dashpot, cohesion).
+  double fNsigned = -law.elastic(c.overlap, c.reducedRadius) + cN * un;
   if (p.cohesion > 0.0) {
     const double a = p.beta * c.reducedRadius;
-    fN += p.cohesion * 4.0 * a * a * n;
+    fNsigned += p.cohesion * 4.0 * a * a;
   }
-  const double fNmag = fN.norm();
+  const Eigen::Vector3d fN = fNsigned * n;
+  const double fNmag = std::abs(fNsigned);
   out.normalForce = fNmag;
 
   if (!h.fresh())
     carryContactFrame(h, n, c.omegaSum, dt);
   Eigen::Map<Eigen::Vector3d> S(h.spring), xiR(h.rolling);
   // Tangential spring and Coulomb slider; pkdgrav zeroes the spring when it slips.
-  const double cT = fc.dampingT * std::sqrt(kT * c.reducedMass);
+  const double cT = fc.dampingT * fc.sqrtKT * std::sqrt(c.reducedMass);
   S += uT * dt;
   Eigen::Vector3d fT = kT * S + cT * uT;
   const double fTmax = p.muS * fNmag;
-  if (fT.norm() > fTmax) {
+  if (fT.squaredNorm() > fTmax * fTmax) {
     S.setZero();
     const double ut = uT.norm();
     fT = (ut > 0.0 ? std::min(fTmax, cT * ut) / ut : 0.0) * uT;
@@ -166,9 +202,9 @@ ContactResult ssdemContact(const Normal& law, const ContactParams& p, const Fric
       const double kR = kN * br * br, cR = cN * br * br, mRmax = p.muR * br * fNmag;
       xiR += omegaR * dt;
       mR = kR * xiR;
-      const double m = mR.norm();
-      if (m > mRmax) {
-        mR *= mRmax / m;
+      const double m2 = mR.squaredNorm();
+      if (m2 > mRmax * mRmax) {
+        mR *= mRmax / std::sqrt(m2);
         xiR -= omegaR * dt;
       } else {
         mR += cR * omegaR;

@@ -89,6 +89,8 @@ void DemParams::validate() const {
   }
   if (!std::isfinite(skin))
     throw InputError("the Verlet skin must be finite");
+  if (walls.size() > 64)
+    throw InputError("at most 64 walls are supported");
   if (!(overlapAbort > 0.0) || !(initialOverlapLimit >= 0.0) || !(minStepsPerCollision > 0.0))
     throw InputError("overlap and step limits must be positive");
 }
@@ -163,6 +165,8 @@ void DemSolver::initialise(bool computeInitialForces) {
   const double rmin = *std::min_element(s.radius.begin(), s.radius.end());
   rmax_ = *std::max_element(s.radius.begin(), s.radius.end());
   skin_ = params_.skin < 0.0 ? 0.2 * rmin : params_.skin;
+  if (computeInitialForces)
+    sortSpatially(); // a restored run keeps its saved order
   inertia_.resize(n_);
   for (std::size_t i = 0; i < n_; ++i)
     inertia_[i] = 0.4 * s.mass[i] * s.radius[i] * s.radius[i];
@@ -231,6 +235,48 @@ void DemSolver::initialise(bool computeInitialForces) {
 }
 
 // ---------------------------------------------------------------------------------------------
+void DemSolver::sortSpatially() {
+  ParticleSet& s = state_;
+  double lo[3] = {kInf, kInf, kInf};
+  for (std::size_t i = 0; i < n_; ++i)
+    for (int k = 0; k < 3; ++k)
+      lo[k] = std::min(lo[k], s.position[3 * i + k]);
+  const double cell = 2.0 * rmax_;
+  auto spread = [](std::uint64_t v) { // 21 bits -> every third bit
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+  };
+  std::vector<std::pair<std::uint64_t, std::size_t>> key(n_);
+  for (std::size_t i = 0; i < n_; ++i) {
+    std::uint64_t code = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double c = std::min((s.position[3 * i + k] - lo[k]) / cell, 2097151.0);
+      code |= spread(static_cast<std::uint64_t>(c)) << k;
+    }
+    key[i] = {code, i};
+  }
+  std::sort(key.begin(), key.end()); // ties broken by the original index: deterministic
+  auto permute = [&](auto& v, std::size_t width) {
+    auto copy = v;
+    for (std::size_t i = 0; i < n_; ++i)
+      for (std::size_t k = 0; k < width; ++k)
+        v[i * width + k] = copy[key[i].second * width + k];
+  };
+  permute(s.position, 3);
+  permute(s.velocity, 3);
+  permute(s.angularVelocity, 3);
+  permute(s.radius, 1);
+  permute(s.mass, 1);
+  permute(s.density, 1);
+  permute(s.material, 1);
+  permute(s.id, 1);
+}
+
 void DemSolver::buildNeighbourList() {
   const double* x = state_.position.data();
   const double* r = state_.radius.data();
@@ -308,6 +354,23 @@ void DemSolver::buildNeighbourList() {
   std::vector<std::size_t> fill(secondStart_.begin(), secondStart_.end() - 1);
   for (std::size_t k = 0; k < pairs; ++k)
     secondPair_[fill[pairJ_[k]]++] = k;
+  // Walls a particle can reach before the next rebuild (it moves less than skin/2).
+  wallNear_.assign(n_, 0);
+  const std::size_t walls = params_.walls.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n_; ++i)
+    for (std::size_t w = 0; w < walls; ++w) {
+      const Wall& wall = params_.walls[w];
+      double nv[3], lever;
+      bool near = wall.overlap(&x[3 * i], r[i] + skin_, nv, lever) > 0.0;
+      if (!near && wall.type == Wall::Type::Bowl) { // may cross the rim plane before the next build
+        const double d = std::hypot(x[3 * i] - wall.point[0], x[3 * i + 1] - wall.point[1],
+                                    x[3 * i + 2] - wall.point[2]);
+        near = d > wall.radius - (r[i] + skin_);
+      }
+      if (near)
+        wallNear_[i] |= std::uint64_t(1) << w;
+    }
   refPos_ = state_.position;
   ++builds_;
 }
@@ -384,7 +447,8 @@ template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const
         t += at(pairTorqueJ_, k);
       }
     }
-    for (std::size_t w = 0; w < walls; ++w) {
+    for (std::uint64_t near = wallNear_[i]; near != 0; near &= near - 1) {
+      const std::size_t w = static_cast<std::size_t>(__builtin_ctzll(near));
       double nv[3], lever;
       const double overlap = params_.walls[w].overlap(&x[3 * i], r[i], nv, lever);
       ContactHistory& h = wallHistory_[i * walls + w];

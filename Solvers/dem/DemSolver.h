@@ -8,7 +8,9 @@
 //
 // Forces are computed in two passes so that OpenMP never needs atomics: each pair writes
 // its force and torques to its own slot, then each particle sums its pairs in index order.
-// The result is bit-identical for any thread count, and a run resumed from a checkpoint
+// A new run first orders the particles along a Morton curve of their cells, so that
+// neighbours sit close in memory (the output keeps each particle's Id, not its input
+// position). The result is bit-identical for any thread count, and a run resumed from a checkpoint
 // continues bit-identically (the restored run rebuilds its list; pairs out of contact
 // contribute nothing and the sums keep their order).
 #pragma once
@@ -108,6 +110,7 @@ private:
   DemSolver(Restore, const ParticleSet& particles, const DemParams& params);
   void initialise(bool computeInitialForces);
   void checkInput() const;
+  void sortSpatially();
   void buildNeighbourList();
   void computeForces();
   template <class Law> void computeForcesWith(const Law& pairLaw, const Law& wallLaw);
@@ -129,6 +132,7 @@ private:
   std::vector<double> pairForce_, pairTorqueI_, pairTorqueJ_;
   std::vector<std::size_t> firstStart_, secondStart_, secondPair_;
   std::vector<ContactHistory> wallHistory_; // n_ x walls
+  std::vector<std::uint64_t> wallNear_;      // per particle: walls within r + skin at the last build
   std::vector<char> wallActive_;
 
   double worstOverlap_ = 0.0;

@@ -90,7 +90,7 @@ def render_cross_section(source, filename, half_width=None, color_by="Height",
     bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
     bar.WindowLocation = "Any Location"
     bar.Orientation = "Vertical"
-    bar.Position = [0.93, 0.15]
+    bar.Position = [0.89, 0.15]
     bar.ScalarBarLength = 0.6
 
     pad = 0.06 * (bounds[1] - bounds[0])

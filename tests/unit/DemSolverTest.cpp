@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -44,6 +45,12 @@ DemParams frictionless(double restitution, double vmax = 1.0, double steps = 200
 Eigen::Vector3d velocityOf(const DemSolver& s, std::size_t i) {
   const auto& v = s.particles().velocity;
   return {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+}
+
+// The solver orders particles spatially: find one by its Id.
+std::size_t indexOf(const DemSolver& s, std::int64_t id) {
+  const auto& ids = s.particles().id;
+  return static_cast<std::size_t>(std::find(ids.begin(), ids.end(), id) - ids.begin());
 }
 
 } // namespace
@@ -97,9 +104,10 @@ TEST(DemContact, HeadOnPairReboundsWithRestitution) {
     s.velocity[3] = -1.0;
     DemSolver solver(s, p);
     solver.advanceTo(0.01);
-    const double relative = velocityOf(solver, 1)[0] - velocityOf(solver, 0)[0];
+    const std::size_t a = indexOf(solver, 0), b = indexOf(solver, 1);
+    const double relative = velocityOf(solver, b)[0] - velocityOf(solver, a)[0];
     EXPECT_NEAR(relative / 2.0, e, 0.01 * e);
-    EXPECT_NEAR(velocityOf(solver, 0)[0] + velocityOf(solver, 1)[0], 0.0, 1e-12);
+    EXPECT_NEAR(velocityOf(solver, a)[0] + velocityOf(solver, b)[0], 0.0, 1e-12);
   }
 }
 

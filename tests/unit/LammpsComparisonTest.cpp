@@ -61,11 +61,14 @@ Outcome runCraterKit(const ContactParams& c, double dt, int steps) {
   for (int i = 0; i < steps; ++i)
     solver.step();
   Outcome o;
-  for (int i = 0; i < 2; ++i)
+  const ParticleSet& out = solver.particles(); // the solver may reorder: index by Id
+  for (std::size_t j = 0; j < 2; ++j) {
+    const int i = static_cast<int>(out.id[j]) - 1;
     for (int k = 0; k < 3; ++k) {
-      o.v[i][k] = solver.particles().velocity[3 * i + k];
-      o.w[i][k] = solver.particles().angularVelocity[3 * i + k];
+      o.v[i][k] = out.velocity[3 * j + k];
+      o.w[i][k] = out.angularVelocity[3 * j + k];
     }
+  }
   return o;
 }
 
