@@ -23,6 +23,17 @@ struct ParticleSet {
   std::size_t size() const { return radius.size(); }
 
   void reserve(std::size_t n);
+  // Calls f(array, components) for every per-particle array, e.g. to permute or compact.
+  template <class F> void forEachArray(F&& f) {
+    f(position, 3);
+    f(velocity, 3);
+    f(angularVelocity, 3);
+    f(radius, 1);
+    f(mass, 1);
+    f(density, 1);
+    f(material, 1);
+    f(id, 1);
+  }
   // Appends a particle at rest.
   void add(const double x[3], double r, double rho, int mat, std::int64_t ident);
 };

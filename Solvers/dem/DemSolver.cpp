@@ -27,6 +27,27 @@ inline void put(std::vector<double>& a, std::size_t i, const Vec& v) {
   a[3 * i + 2] = v[2];
 }
 
+// Walks two pair lists sorted by (i, j) and calls same(a, b) for each pair in both.
+template <class Same>
+std::size_t forCommonPairs(const std::vector<std::uint32_t>& ai, const std::vector<std::uint32_t>& aj,
+                           const std::vector<std::uint32_t>& bi, const std::vector<std::uint32_t>& bj,
+                           Same&& same) {
+  std::size_t found = 0;
+  for (std::size_t a = 0, b = 0; a < ai.size() && b < bi.size();) {
+    const auto ka = (static_cast<std::uint64_t>(ai[a]) << 32) | aj[a];
+    const auto kb = (static_cast<std::uint64_t>(bi[b]) << 32) | bj[b];
+    if (ka < kb) {
+      ++a;
+    } else if (kb < ka) {
+      ++b;
+    } else {
+      same(a++, b++);
+      ++found;
+    }
+  }
+  return found;
+}
+
 std::string describe(const ParticleSet& s, std::size_t i) {
   std::ostringstream out;
   out << "particle " << i << " (Id " << s.id[i] << ")";
@@ -267,14 +288,7 @@ void DemSolver::sortSpatially() {
       for (std::size_t k = 0; k < width; ++k)
         v[i * width + k] = copy[key[i].second * width + k];
   };
-  permute(s.position, 3);
-  permute(s.velocity, 3);
-  permute(s.angularVelocity, 3);
-  permute(s.radius, 1);
-  permute(s.mass, 1);
-  permute(s.density, 1);
-  permute(s.material, 1);
-  permute(s.id, 1);
+  s.forEachArray(permute);
 }
 
 void DemSolver::buildNeighbourList() {
@@ -322,20 +336,10 @@ void DemSolver::buildNeighbourList() {
   // Carry histories of pairs that stay in the list (both lists sorted by (i, j)).
   std::vector<ContactHistory> newHistory(pairs);
   std::vector<char> newActive(pairs, 0);
-  for (std::size_t a = 0, b = 0; a < pairI_.size() && b < pairs;) {
-    const auto ka = (static_cast<std::uint64_t>(pairI_[a]) << 32) | pairJ_[a];
-    const auto kb = (static_cast<std::uint64_t>(newI[b]) << 32) | newJ[b];
-    if (ka < kb) {
-      ++a;
-    } else if (kb < ka) {
-      ++b;
-    } else {
-      newHistory[b] = pairHistory_[a];
-      newActive[b] = pairActive_[a];
-      ++a;
-      ++b;
-    }
-  }
+  forCommonPairs(pairI_, pairJ_, newI, newJ, [&](std::size_t a, std::size_t b) {
+    newHistory[b] = pairHistory_[a];
+    newActive[b] = pairActive_[a];
+  });
   pairI_.swap(newI);
   pairJ_.swap(newJ);
   pairHistory_.swap(newHistory);
@@ -630,14 +634,7 @@ std::size_t DemSolver::removeParticles(const std::vector<char>& remove) {
     v.resize(kept * width);
   };
   ParticleSet& s = state_;
-  compact(s.position, 3);
-  compact(s.velocity, 3);
-  compact(s.angularVelocity, 3);
-  compact(s.radius, 1);
-  compact(s.mass, 1);
-  compact(s.density, 1);
-  compact(s.material, 1);
-  compact(s.id, 1);
+  s.forEachArray(compact);
   compact(inertia_, 1);
   compact(acc_, 3);
   compact(alpha_, 3);
@@ -927,22 +924,11 @@ DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t available) {
   solver.wallActive_ = std::move(wa);
   solver.overlapWarningSteps_ = warnings;
   // Merge the saved histories into the fresh list (every saved contact must be in it).
-  std::size_t found = 0;
-  for (std::size_t a = 0, b = 0; a < ci.size() && b < solver.pairI_.size();) {
-    const auto ka = (static_cast<std::uint64_t>(ci[a]) << 32) | cj[a];
-    const auto kb = (static_cast<std::uint64_t>(solver.pairI_[b]) << 32) | solver.pairJ_[b];
-    if (ka < kb) {
-      ++a;
-    } else if (kb < ka) {
-      ++b;
-    } else {
-      solver.pairHistory_[b] = ch[a];
-      solver.pairActive_[b] = 1;
-      ++found;
-      ++a;
-      ++b;
-    }
-  }
+  const std::size_t found =
+      forCommonPairs(ci, cj, solver.pairI_, solver.pairJ_, [&](std::size_t a, std::size_t b) {
+        solver.pairHistory_[b] = ch[a];
+        solver.pairActive_[b] = 1;
+      });
   if (found != ci.size())
     throw InputError("checkpoint corrupt: a saved contact is not between neighbouring particles");
   return solver;

@@ -39,3 +39,16 @@ def captured_vtk_messages():
         box["text"] = window.GetOutput()
         vtkOutputWindow.SetInstance(original)
         original.UnRegister(None)
+
+
+def run_example(source_dir, name, args):
+    """Runs examples/NAME.py in this interpreter with ARGS; returns its exit code."""
+    import os
+    import runpy
+    import sys
+    sys.argv = [name + ".py"] + list(args)
+    try:
+        runpy.run_path(os.path.join(source_dir, "examples", name + ".py"), run_name="__main__")
+        return 0
+    except SystemExit as stop:
+        return stop.code or 0

@@ -2,19 +2,13 @@
 
 import json
 import os
-import runpy
 import sys
 
-from craterkit.testing import Checker
+from craterkit.testing import Checker, run_example
 
 source_dir, out = sys.argv[1], sys.argv[2]
 t = Checker("example bed_cross_section")
-sys.argv = ["bed_cross_section.py", "--output-dir", out, "--width", "800"]
-try:
-    runpy.run_path(os.path.join(source_dir, "examples", "bed_cross_section.py"), run_name="__main__")
-    code = 0
-except SystemExit as stop:
-    code = stop.code or 0
+code = run_example(source_dir, "bed_cross_section", ["--output-dir", out, "--width", "800"])
 t.check(code == 0, f"example exited with {code}")
 report = json.load(open(os.path.join(out, "report.json")))
 t.check(report["particles"] > 1000, f"too few particles: {report['particles']}")

@@ -2,19 +2,13 @@
 
 import json
 import os
-import runpy
 import sys
 
-from craterkit.testing import Checker
+from craterkit.testing import Checker, run_example
 
 source_dir, out = sys.argv[1], sys.argv[2]
 t = Checker("example bed_impact")
-sys.argv = ["bed_impact.py", "--output-dir", out, "--width", "640"]
-try:
-    runpy.run_path(os.path.join(source_dir, "examples", "bed_impact.py"), run_name="__main__")
-    code = 0
-except SystemExit as stop:
-    code = stop.code or 0
+code = run_example(source_dir, "bed_impact", ["--output-dir", out, "--width", "640"])
 t.check(code == 0, f"example exited with {code}")
 report = json.load(open(os.path.join(out, "report.json")))
 t.check(report["bed_particles"] > 500, f"too few particles: {report['bed_particles']}")

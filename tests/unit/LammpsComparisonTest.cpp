@@ -80,7 +80,8 @@ Outcome runLammps(const ContactParams& c, double dt, int steps, const std::strin
   std::ofstream(dir + "/in.oblique") << kLammpsInput;
   std::ostringstream cmd;
   cmd.precision(17);
-  cmd << "cd '" << dir << "' && lmp -log none -screen none -in in.oblique"
+  // A stale Open MPI session can make a singleton start hang: bound it.
+  cmd << "cd '" << dir << "' && timeout 120 lmp -log none -screen none -in in.oblique"
       << " -var kn " << kN << " -var etan " << cN << " -var kt " << kT << " -var xgt " << cT / cN
       << " -var mus " << c.muS << " -var kr " << kN * b * b << " -var gr " << cN * b * b
       << " -var mur " << c.muR * b << " -var ktw " << 2 * kT * br * br << " -var gtw "
