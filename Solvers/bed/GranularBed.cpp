@@ -101,7 +101,7 @@ int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, const Container& c
     double* x = s.position.data();
     cells.build(x, n, 2.0 * rmax);
     double worst = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : worst)
+#pragma omp parallel for schedule(static) reduction(max : worst) if (n >= 512)
     for (std::size_t i = 0; i < n; ++i) {
       double d[3] = {0.0, 0.0, 0.0};
       const double ri = scale * radius[i], vi = ri * ri * ri;
@@ -130,7 +130,7 @@ int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, const Container& c
     }
     if (worst <= 0.0 && scale == 1.0)
       return sweep;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= 512)
     for (std::size_t i = 0; i < n; ++i) {
       for (int k = 0; k < 3; ++k)
         x[3 * i + k] += shift[3 * i + k];

@@ -17,6 +17,10 @@ namespace craterkit {
 
 namespace {
 
+// Below this many particles a step is too short to amortise OpenMP's barriers (with more
+// threads than cores they cost a time slice each): run serially. Results do not depend on it.
+constexpr std::size_t kParallelMin = 512;
+
 using Vec = Eigen::Vector3d;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -297,7 +301,7 @@ void DemSolver::buildNeighbourList() {
   CellList cells;
   cells.build(x, n_, 2.0 * rmax_ + skin_);
   std::vector<std::size_t> count(n_ + 1, 0);
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (n_ >= kParallelMin)
   for (std::size_t i = 0; i < n_; ++i) {
     std::size_t c = 0;
     cells.forEachCandidate(&x[3 * i], r[i] + rmax_ + skin_, [&](std::size_t j) {
@@ -314,7 +318,7 @@ void DemSolver::buildNeighbourList() {
     start[i + 1] = start[i] + count[i + 1];
   const std::size_t pairs = start[n_];
   std::vector<std::uint32_t> newI(pairs), newJ(pairs);
-#pragma omp parallel
+#pragma omp parallel if (n_ >= kParallelMin)
   {
     std::vector<std::uint32_t> buffer;
 #pragma omp for schedule(dynamic, 256)
@@ -361,7 +365,7 @@ void DemSolver::buildNeighbourList() {
   // Walls a particle can reach before the next rebuild (it moves less than skin/2).
   wallNear_.assign(n_, 0);
   const std::size_t walls = params_.walls.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n_ >= kParallelMin)
   for (std::size_t i = 0; i < n_; ++i)
     for (std::size_t w = 0; w < walls; ++w) {
       const Wall& wall = params_.walls[w];
@@ -402,7 +406,7 @@ template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const
   const std::size_t pairs = pairI_.size();
   double worst = 0.0;
 
-#pragma omp parallel for schedule(static) reduction(max : worst)
+#pragma omp parallel for schedule(static) reduction(max : worst) if (n_ >= kParallelMin)
   for (std::size_t k = 0; k < pairs; ++k) {
     const std::size_t i = pairI_[k], j = pairJ_[k];
     const Vec rho(x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]);
@@ -436,7 +440,7 @@ template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const
   }
 
   const std::size_t walls = params_.walls.size();
-#pragma omp parallel for schedule(static) reduction(max : worst)
+#pragma omp parallel for schedule(static) reduction(max : worst) if (n_ >= kParallelMin)
   for (std::size_t i = 0; i < n_; ++i) {
     Vec f = Vec::Zero(), t = Vec::Zero();
     for (std::size_t k = firstStart_[i]; k < firstStart_[i + 1]; ++k)
@@ -527,7 +531,7 @@ void DemSolver::step() {
   std::vector<double>& v = state_.velocity;
   std::vector<double>& w = state_.angularVelocity;
   double moved = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : moved)
+#pragma omp parallel for schedule(static) reduction(max : moved) if (n_ >= kParallelMin)
   for (std::size_t i = 0; i < n_; ++i) {
     double d2 = 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -555,7 +559,7 @@ void DemSolver::step() {
     buildNeighbourList();
   }
   computeForces();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n_ >= kParallelMin)
   for (std::size_t a = 0; a < 3 * n_; ++a) {
     v[a] += h * acc_[a];
     w[a] += h * alpha_[a];

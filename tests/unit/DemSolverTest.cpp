@@ -184,18 +184,19 @@ TEST(DemFriction, RollingSphereStopsAsRollingFrictionPredicts) {
 namespace {
 // A dense HCP box of equal spheres with random velocities, as DEM input; squeeze < 1
 // pulls the lattice together so that every neighbour pair starts in contact.
-ParticleSet jostledBlock(double speed, std::uint64_t seed, double squeeze = 1.0, double r = kR) {
+ParticleSet jostledBlock(double speed, std::uint64_t seed, double squeeze = 1.0, double r = kR,
+                         double cells = 12.0) {
   GranularBedParams bp;
   bp.packing = GranularBedParams::Packing::HCP;
   bp.container.type = Container::Type::Box;
-  bp.container.boxSize = {12 * r, 12 * r, 12 * r};
+  bp.container.boxSize = {cells * r, cells * r, cells * r};
   bp.sizes.radius = r;
   bp.particleDensity = kRho;
   ParticleSet s = generateGranularBed(bp);
   for (std::size_t i = 0; i < s.size(); ++i) {
     s.position[3 * i] *= squeeze;
     s.position[3 * i + 1] *= squeeze;
-    s.position[3 * i + 2] = -6 * r + (s.position[3 * i + 2] + 6 * r) * squeeze;
+    s.position[3 * i + 2] = -0.5 * cells * r + (s.position[3 * i + 2] + 0.5 * cells * r) * squeeze;
   }
   Random rng(seed);
   for (double& v : s.velocity)
@@ -338,7 +339,10 @@ TEST(DemRestart, ResumedRunIsBitIdentical) {
 }
 
 TEST(DemRestart, ThreadCountDoesNotChangeResults) {
-  const ParticleSet s = jostledBlock(0.5, 8);
+  // Large enough (> 512 particles) for the solver to run its loops in parallel.
+  // Same physical block as the other tests (12 kR wide), in smaller particles.
+  const ParticleSet s = jostledBlock(0.5, 8, 1.0, 0.6 * kR, 20.0);
+  ASSERT_GT(s.size(), 600u);
   const DemParams p = frictionalBox();
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
