@@ -79,13 +79,11 @@ struct ContactResult {
   Eigen::Vector3d force;   // on p (n gets minus this)
   Eigen::Vector3d torqueP; // on p
   Eigen::Vector3d torqueN; // on n
-  double normalForce;      // |F_N|
 };
 
 // A normal law: elastic force magnitude, the stiffness used for rolling and twisting
 // springs, the dashpot coefficient, and the stored elastic energy.
 struct LinearSpringDashpot {
-  static constexpr const char* name = "LinearSpringDashpot";
   LinearSpringDashpot(double k, double restitution)
       : kN(k), factor(dashpotFactor(restitution) * std::sqrt(k)) {}
   double kN, factor; // factor includes sqrt(k_N)
@@ -96,7 +94,6 @@ struct LinearSpringDashpot {
 };
 
 struct Hertz {
-  static constexpr const char* name = "Hertz";
   // E* = E / (2 (1 - ν^2)) between two particles of one material, E / (1 - ν^2) against a
   // rigid wall.
   Hertz(double modulus, double restitution)
@@ -173,7 +170,6 @@ ContactResult ssdemContact(const Normal& law, const ContactParams& p, const Fric
   }
   const Eigen::Vector3d fN = fNsigned * n;
   const double fNmag = std::abs(fNsigned);
-  out.normalForce = fNmag;
 
   if (!h.fresh())
     carryContactFrame(h, n, c.omegaSum, dt);

@@ -28,42 +28,33 @@ std::string Wall::typeName(Type t) {
   }
 }
 
-Wall Wall::plane(std::array<double, 3> p, std::array<double, 3> n) {
+namespace {
+Wall makeWall(Wall::Type type, std::array<double, 3> point, std::array<double, 3> direction,
+              double radius, const char* what) {
   Wall w;
-  w.type = Type::Plane;
-  w.point = p;
-  w.normal = unit(n, "normal");
+  w.type = type;
+  w.point = point;
+  w.normal = unit(direction, what);
+  w.radius = radius;
+  w.validate();
   return w;
+}
+} // namespace
+
+Wall Wall::plane(std::array<double, 3> p, std::array<double, 3> n) {
+  return makeWall(Type::Plane, p, n, 0.0, "normal");
 }
 
 Wall Wall::bowl(std::array<double, 3> c, double r, std::array<double, 3> up) {
-  Wall w;
-  w.type = Type::Bowl;
-  w.point = c;
-  w.radius = r;
-  w.normal = unit(up, "up direction");
-  w.validate();
-  return w;
+  return makeWall(Type::Bowl, c, up, r, "up direction");
 }
 
 Wall Wall::cylinder(std::array<double, 3> p, std::array<double, 3> axis, double r) {
-  Wall w;
-  w.type = Type::Cylinder;
-  w.point = p;
-  w.radius = r;
-  w.normal = unit(axis, "axis");
-  w.validate();
-  return w;
+  return makeWall(Type::Cylinder, p, axis, r, "axis");
 }
 
 Wall Wall::disk(std::array<double, 3> c, std::array<double, 3> n, double r) {
-  Wall w;
-  w.type = Type::Disk;
-  w.point = c;
-  w.radius = r;
-  w.normal = unit(n, "normal");
-  w.validate();
-  return w;
+  return makeWall(Type::Disk, c, n, r, "normal");
 }
 
 void Wall::validate() const {

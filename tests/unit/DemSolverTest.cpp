@@ -126,18 +126,27 @@ TEST(DemContact, HertzDropReboundsWithRestitution) {
   }
 }
 
-TEST(DemFriction, SlidingSphereDeceleratesAtMuGThenRolls) {
-  const double g = 9.81, mu = 0.3, v0 = 2.0;
+namespace {
+// A sphere resting on the floor z = 0 under gravity g: the parameters and its rest height.
+DemParams onFloor(double g, double& restHeight) {
   DemParams p;
-  p.contact.muS = mu;
-  p.contact.muR = p.contact.muT = 0.0;
-  p.contact.restitutionN = 0.3;
   const StiffnessProposal k = proposeStiffness(kR, kRho, 1.0, 0.01, g, 0.1, 50.0);
   p.contact.kN = k.kN;
   p.dt = k.dt;
   p.gravity.vector = {0, 0, -g};
   p.walls.push_back(Wall::plane({0, 0, 0}, {0, 0, 1}));
-  const double rest = kR - sphereMass() * g / p.contact.kN;
+  restHeight = kR - sphereMass() * g / p.contact.kN;
+  return p;
+}
+} // namespace
+
+TEST(DemFriction, SlidingSphereDeceleratesAtMuGThenRolls) {
+  const double g = 9.81, mu = 0.3, v0 = 2.0;
+  double rest;
+  DemParams p = onFloor(g, rest);
+  p.contact.muS = mu;
+  p.contact.muR = p.contact.muT = 0.0;
+  p.contact.restitutionN = 0.3;
   DemSolver s(one(0, 0, rest, v0, 0, 0), p);
   // Slip lasts 2 v0 / (7 mu g): measure the deceleration over its middle half.
   const double slip = 2.0 * v0 / (7.0 * mu * g);
@@ -155,17 +164,12 @@ TEST(DemFriction, SlidingSphereDeceleratesAtMuGThenRolls) {
 TEST(DemFriction, RollingSphereStopsAsRollingFrictionPredicts) {
   // At the slider limit M = mu_r beta r m g opposes rolling: dv/dt = -(5/7) mu_r beta g.
   const double g = 9.81, muR = 0.1, beta = 0.5, v0 = 0.5;
-  DemParams p;
+  double rest;
+  DemParams p = onFloor(g, rest);
   p.contact.muS = 0.8;
   p.contact.muR = muR;
   p.contact.beta = beta;
   p.contact.muT = 0.0;
-  const StiffnessProposal k = proposeStiffness(kR, kRho, 1.0, 0.01, g, 0.1, 50.0);
-  p.contact.kN = k.kN;
-  p.dt = k.dt;
-  p.gravity.vector = {0, 0, -g};
-  p.walls.push_back(Wall::plane({0, 0, 0}, {0, 0, 1}));
-  const double rest = kR - sphereMass() * g / p.contact.kN;
   ParticleSet ball = one(0, 0, rest, v0, 0, 0);
   ball.angularVelocity = {0, v0 / rest, 0};
   DemSolver s(ball, p);
