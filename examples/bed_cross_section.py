@@ -9,7 +9,6 @@ dashed and the central axis drawn. Writes a PNG, report.md and report.json.
 """
 
 import argparse
-import json
 import math
 import os
 import sys
@@ -17,6 +16,7 @@ import time
 
 from craterkit import field_value, fetch, load_plugin
 from craterkit.cross_section import render_cross_section
+from craterkit.report import write_report
 
 
 def parse_args(argv):
@@ -86,14 +86,7 @@ def main(argv):
         "bed_seconds": round(elapsed, 3),
         "image": os.path.basename(image),
     }
-    with open(os.path.join(args.output_dir, "report.json"), "w") as f:
-        json.dump(report, f, indent=2)
-    with open(os.path.join(args.output_dir, "report.md"), "w") as f:
-        f.write("# CraterKit: granular bed cross-section\n\n")
-        f.write(f"![cross-section]({os.path.basename(image)})\n\n")
-        f.write("| quantity | value |\n|---|---|\n")
-        for key, value in report.items():
-            f.write(f"| {key} | {value} |\n")
+    write_report(args.output_dir, "granular bed cross-section", os.path.basename(image), report)
     print(f"wrote {image}, report.md and report.json in {args.output_dir}")
     return 0
 

@@ -8,7 +8,6 @@ Writes cross-sections at every output time, report.md and report.json.
 """
 
 import argparse
-import json
 import math
 import os
 import sys
@@ -16,6 +15,7 @@ import time
 
 from craterkit import fetch, field_value, load_plugin
 from craterkit.cross_section import render_cross_section
+from craterkit.report import write_report
 
 
 def parse_args(argv):
@@ -99,14 +99,7 @@ def main(argv):
         "dem_seconds_with_rendering": round(elapsed, 2),
         "frames": frames,
     }
-    with open(os.path.join(args.output_dir, "report.json"), "w") as f:
-        json.dump(report, f, indent=2)
-    with open(os.path.join(args.output_dir, "report.md"), "w") as f:
-        f.write("# CraterKit: sphere into a granular bed (DEM)\n\n")
-        f.write(f"![last frame]({frames[-1]})\n\n| quantity | value |\n|---|---|\n")
-        for key, value in report.items():
-            if key != "frames":
-                f.write(f"| {key} | {value} |\n")
+    write_report(args.output_dir, "sphere into a granular bed (DEM)", frames[-1], report)
     print(f"wrote {len(frames)} frames, report.md and report.json in {args.output_dir}")
     return 0
 

@@ -210,20 +210,18 @@ def main():
     n = ck["particles"]
     skip = set(filter(None, args.skip.split(",")))
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    if "lammps" not in skip:
-        log("[3/4] LAMMPS, 2 MPI ranks")
-        write_data(os.path.join(work, "bed.lammps.data"), ck, xyz, "sphere")
-        with open(os.path.join(work, "in.lammps"), "w") as f:
-            f.write(lammps_input(ck, args.steps))
-        out, _ = run(mpirun(2) + ["lmp", "-in", "in.lammps", "-log", "log.lammps"], env=env, cwd=work)
-        results["LAMMPS 2 ranks"] = loop_time(out)
-    if "liggghts" not in skip:
-        log("[4/4] LIGGGHTS 3.8, 2 MPI ranks (no twisting model)")
-        write_data(os.path.join(work, "bed.liggghts.data"), ck, xyz, "granular")
-        with open(os.path.join(work, "in.liggghts"), "w") as f:
-            f.write(liggghts_input(ck, args.steps))
-        out, _ = run(mpirun(2) + ["liggghts", "-in", "in.liggghts", "-log", "log.liggghts"], env=env, cwd=work)
-        results["LIGGGHTS 2 ranks"] = loop_time(out)
+    peers = [("lammps", "LAMMPS", "lmp", "sphere", lammps_input, "[3/4] LAMMPS, 2 MPI ranks"),
+             ("liggghts", "LIGGGHTS", "liggghts", "granular", liggghts_input,
+              "[4/4] LIGGGHTS 3.8, 2 MPI ranks (no twisting model)")]
+    for key, name, executable, style, make_input, message in peers:
+        if key in skip:
+            continue
+        log(message)
+        write_data(os.path.join(work, f"bed.{key}.data"), ck, xyz, style)
+        with open(os.path.join(work, f"in.{key}"), "w") as f:
+            f.write(make_input(ck, args.steps))
+        out, _ = run(mpirun(2) + [executable, "-in", f"in.{key}", "-log", f"log.{key}"], env=env, cwd=work)
+        results[f"{name} 2 ranks"] = loop_time(out)
 
     log(f"\n{n} particles, {args.steps} steps, dt = {ck['dt']:.4g} s, k_N = {ck['kn']:.4g} N/m")
     log(f"{'code':<20} {'seconds':>10} {'particle-steps/s':>18}")
