@@ -250,7 +250,7 @@ void DemSolver::initialise(bool computeInitialForces) {
     throw InputError(msg.str());
   }
   if (computeInitialForces) {
-    computeForces();
+    computeForces(0.0);
     if (worstOverlap_ > params_.overlapWarning) {
       std::ostringstream msg;
       msg << "initial overlaps up to " << 100 * worstOverlap_ << " % of a radius (walls included)";
@@ -384,18 +384,20 @@ void DemSolver::buildNeighbourList() {
 }
 
 // ---------------------------------------------------------------------------------------------
-void DemSolver::computeForces() {
+void DemSolver::computeForces(double kick) {
   const ContactParams& c = params_.contact;
   if (c.normalModel == "Hertz") {
     const double E = c.youngsModulus / (1.0 - c.poissonRatio * c.poissonRatio);
-    computeForcesWith(Hertz{0.5 * E, c.restitutionN}, Hertz{E, c.restitutionN});
+    computeForcesWith(Hertz{0.5 * E, c.restitutionN}, Hertz{E, c.restitutionN}, kick);
   } else {
     const LinearSpringDashpot law{c.kN, c.restitutionN};
-    computeForcesWith(law, law);
+    computeForcesWith(law, law, kick);
   }
 }
 
-template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const Law& wallLaw) {
+// Forces and torques at the current positions; with kick > 0 the closing half-kick of the
+// step (v += kick a) is applied in the same pass, while the accelerations are in registers.
+template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const Law& wallLaw, double kick) {
   const ContactParams& cp = params_.contact;
   const FrictionConstants fc(cp);
   const double dt = params_.dt;
@@ -486,9 +488,16 @@ template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const
     }
     double g[3];
     params_.gravity.acceleration(&x[3 * i], g);
+    double* v = &state_.velocity[3 * i];
+    double* w = &state_.angularVelocity[3 * i];
     for (int k = 0; k < 3; ++k) {
-      acc_[3 * i + k] = f[k] / m[i] + g[k];
-      alpha_[3 * i + k] = t[k] / inertia_[i];
+      const double a = f[k] / m[i] + g[k], b = t[k] / inertia_[i];
+      acc_[3 * i + k] = a;
+      alpha_[3 * i + k] = b;
+      if (kick != 0.0) {
+        v[k] += kick * a;
+        w[k] += kick * b;
+      }
     }
   }
   worstOverlap_ = worst;
@@ -558,12 +567,7 @@ void DemSolver::step() {
         }
     buildNeighbourList();
   }
-  computeForces();
-#pragma omp parallel for schedule(static) if (n_ >= kParallelMin)
-  for (std::size_t a = 0; a < 3 * n_; ++a) {
-    v[a] += h * acc_[a];
-    w[a] += h * alpha_[a];
-  }
+  computeForces(h);
   time_ += dt;
   ++step_;
   if (worstOverlap_ > params_.overlapWarning) {

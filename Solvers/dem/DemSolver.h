@@ -112,8 +112,8 @@ private:
   void checkInput() const;
   void sortSpatially();
   void buildNeighbourList();
-  void computeForces();
-  template <class Law> void computeForcesWith(const Law& pairLaw, const Law& wallLaw);
+  void computeForces(double kick);
+  template <class Law> void computeForcesWith(const Law& pairLaw, const Law& wallLaw, double kick);
   template <class Law> double elasticEnergyWith(const Law& pairLaw, const Law& wallLaw) const;
   void warn(const std::string& message);
 

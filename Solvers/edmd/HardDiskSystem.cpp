@@ -1,0 +1,649 @@
+#include "edmd/HardDiskSystem.h"
+
+#include "common/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+
+namespace craterkit {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string describeDisk(const HardDisks& d, std::size_t i) {
+  std::ostringstream s;
+  s << "disk " << i << " (Id " << d.id[i] << ")";
+  return s.str();
+}
+
+// Distinct cell indices within `reach` of c along an axis of n cells.
+template <class F> void forAxisCells(long c, long reach, long n, bool periodic, F&& f) {
+  if (periodic && 2 * reach + 1 >= n) {
+    for (long k = 0; k < n; ++k)
+      f(k);
+    return;
+  }
+  for (long k = c - reach; k <= c + reach; ++k) {
+    if (k >= 0 && k < n)
+      f(k);
+    else if (periodic)
+      f((k % n + n) % n);
+  }
+}
+} // namespace
+
+void HardDisks::add(double px, double py, double pvx, double pvy, double r, double m, int mat,
+                    std::int64_t ident) {
+  x.push_back(px);
+  y.push_back(py);
+  vx.push_back(pvx);
+  vy.push_back(pvy);
+  radius.push_back(r);
+  mass.push_back(m);
+  material.push_back(mat);
+  id.push_back(ident);
+}
+
+void HardDiskParams::validate() const {
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw InputError(std::string(name) + " must be positive and finite (got " + std::to_string(v) + ")");
+  };
+  positive(width, "the box width");
+  positive(height, "the box height");
+  if (!(restitution > 0.0 && restitution <= 1.0))
+    throw InputError("Restitution must be in (0, 1] (got " + std::to_string(restitution) + ")");
+  if (!(wallRestitution > 0.0 && wallRestitution <= 1.0))
+    throw InputError("the wall restitution must be in (0, 1] (got " + std::to_string(wallRestitution) + ")");
+  if (!(gravity >= 0.0) || !std::isfinite(gravity))
+    throw InputError("Gravity must be zero or positive (got " + std::to_string(gravity) + ")");
+  if (!(tcTime >= 0.0) || !std::isfinite(tcTime))
+    throw InputError("the TC-model time must be zero or positive");
+  if (!(growthRate >= 0.0) || !std::isfinite(growthRate))
+    throw InputError("the growth rate must be zero or positive");
+  if (growthRate > 0.0 && gravity > 0.0)
+    throw InputError("radius growth (compression) runs without gravity");
+  if (periodicY && gravity > 0.0)
+    throw InputError("gravity along a periodic axis is not supported");
+}
+
+HardDiskSystem::HardDiskSystem(const HardDisks& disks, const HardDiskParams& params) : d_(disks), p_(params) {
+  p_.validate();
+  const std::size_t n = d_.size();
+  if (n == 0)
+    throw InputError("no disks to simulate");
+  if (n >= std::numeric_limits<std::uint32_t>::max() / 2)
+    throw InputError("too many disks");
+  for (std::size_t i = 0; i < n; ++i) {
+    const double vals[5] = {d_.x[i], d_.y[i], d_.vx[i], d_.vy[i], d_.radius[i]};
+    for (double v : vals)
+      if (!std::isfinite(v))
+        throw InputError(describeDisk(d_, i) + " has a non-finite position, velocity or radius");
+    if (!(d_.radius[i] > 0.0))
+      throw InputError(describeDisk(d_, i) + " has a non-positive radius");
+    if (!(d_.mass[i] > 0.0) || !std::isfinite(d_.mass[i]))
+      throw InputError(describeDisk(d_, i) + " has a non-positive mass");
+    const double r = d_.radius[i];
+    const bool inX = p_.periodicX ? (d_.x[i] >= 0.0 && d_.x[i] < p_.width) : (d_.x[i] >= r && d_.x[i] <= p_.width - r);
+    const bool inY = p_.periodicY ? (d_.y[i] >= 0.0 && d_.y[i] < p_.height) : (d_.y[i] >= r && d_.y[i] <= p_.height - r);
+    if (!inX || !inY)
+      throw InputError(describeDisk(d_, i) + " is not inside the box (or is larger than it)");
+  }
+  // Small and big disks: cells fit the small ones.
+  const double rmin = *std::min_element(d_.radius.begin(), d_.radius.end());
+  const double rmax = *std::max_element(d_.radius.begin(), d_.radius.end());
+  isBig_.assign(n, 0);
+  smallMax_ = rmax;
+  if (rmax > 3.0 * rmin) {
+    std::size_t big = 0;
+    double sm = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (d_.radius[i] > 3.0 * rmin)
+        ++big;
+      else
+        sm = std::max(sm, d_.radius[i]);
+    }
+    if (big <= 64) {
+      smallMax_ = sm;
+      for (std::size_t i = 0; i < n; ++i)
+        if (d_.radius[i] > 3.0 * rmin) {
+          isBig_[i] = 1;
+          bigs_.push_back(static_cast<std::uint32_t>(i));
+        }
+    }
+  }
+  const double gEnd = growth(p_.growthEnd);
+  const double cell = 2.0 * smallMax_ * gEnd * (1.0 + 1e-9);
+  if ((p_.periodicX && p_.width < 2.0 * cell * (bigs_.empty() ? 1.0 : rmax / smallMax_)) ||
+      (p_.periodicY && p_.height < 2.0 * cell * (bigs_.empty() ? 1.0 : rmax / smallMax_)))
+    throw InputError("a periodic box must be wider than twice the largest disk diameter");
+  nx_ = std::max<std::size_t>(1, static_cast<std::size_t>(p_.width / cell));
+  ny_ = std::max<std::size_t>(1, static_cast<std::size_t>(p_.height / cell));
+  // Keep the grid within memory: at most ~4 cells per disk.
+  while (nx_ * ny_ > 4 * n + 16) {
+    nx_ = std::max<std::size_t>(1, nx_ / 2);
+    ny_ = std::max<std::size_t>(1, ny_ / 2);
+  }
+  cellW_ = p_.width / nx_;
+  cellH_ = p_.height / ny_;
+  reach_.assign(n, 1);
+  for (std::uint32_t b : bigs_)
+    reach_[b] = static_cast<int>(std::ceil((d_.radius[b] + smallMax_) * gEnd / std::min(cellW_, cellH_)));
+
+  head_.assign(nx_ * ny_, -1);
+  nextInCell_.assign(n, -1);
+  prevInCell_.assign(n, -1);
+  cellOf_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t cx = std::min(nx_ - 1, static_cast<std::size_t>(d_.x[i] / cellW_));
+    const std::size_t cy = std::min(ny_ - 1, static_cast<std::size_t>(d_.y[i] / cellH_));
+    insertInCell(i, cy * nx_ + cx);
+  }
+  tp_.assign(n, 0.0);
+  count_.assign(n, 0);
+  lastCollision_.assign(n, -kInf);
+  next_.assign(n + 1, Event{kInf, 0, EventType::None, 0});
+  while (leaf0_ < n)
+    leaf0_ *= 2;
+  tree_.assign(2 * leaf0_, static_cast<std::uint32_t>(n));
+
+  // Overlapping input is an error: the dynamics of hard disks is undefined for it.
+  const double gap = smallestGapNearby();
+  if (gap < -1e-9 * rmin)
+    throw InputError("disks overlap in the input (deepest overlap " + std::to_string(-gap) +
+                     " m): space them first");
+  predictAll();
+}
+
+double HardDiskSystem::smallestGap() const {
+  // Brute force over neighbouring cells plus all big disks (tests call it on small systems).
+  double best = kInf;
+  const std::size_t n = d_.size();
+  const double g = growth(time_);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      double dx = d_.x[j] - d_.x[i], dy = d_.y[j] - d_.y[i];
+      if (p_.periodicX)
+        dx -= p_.width * std::round(dx / p_.width);
+      if (p_.periodicY)
+        dy -= p_.height * std::round(dy / p_.height);
+      best = std::min(best, std::sqrt(dx * dx + dy * dy) - (d_.radius[i] + d_.radius[j]) * g);
+    }
+  return best;
+}
+
+double HardDiskSystem::smallestGapNearby() const {
+  double best = kInf;
+  const double g = growth(time_);
+  auto gap = [&](std::size_t i, std::size_t j) {
+    const double dti = time_ - tp_[i], dtj = time_ - tp_[j], acc = p_.gravity;
+    double dx = d_.x[j] + d_.vx[j] * dtj - d_.x[i] - d_.vx[i] * dti;
+    double dy = d_.y[j] + (d_.vy[j] - 0.5 * acc * dtj) * dtj - d_.y[i] - (d_.vy[i] - 0.5 * acc * dti) * dti;
+    if (p_.periodicX)
+      dx -= p_.width * std::round(dx / p_.width);
+    if (p_.periodicY)
+      dy -= p_.height * std::round(dy / p_.height);
+    best = std::min(best, std::sqrt(dx * dx + dy * dy) - (d_.radius[i] + d_.radius[j]) * g);
+  };
+  for (std::size_t i = 0; i < d_.size(); ++i) {
+    const long cx = static_cast<long>(cellOf_[i] % nx_), cy = static_cast<long>(cellOf_[i] / nx_);
+    forAxisCells(cy, reach_[i], static_cast<long>(ny_), p_.periodicY, [&](long ky) {
+      forAxisCells(cx, reach_[i], static_cast<long>(nx_), p_.periodicX, [&](long kx) {
+        for (std::int64_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
+             k = nextInCell_[static_cast<std::size_t>(k)])
+          if (static_cast<std::size_t>(k) > i && !isBig_[static_cast<std::size_t>(k)])
+            gap(i, static_cast<std::size_t>(k));
+      });
+    });
+    for (std::uint32_t b : bigs_)
+      if (!isBig_[i] || b > i)
+        gap(i, b);
+  }
+  return best;
+}
+
+void HardDiskSystem::insertInCell(std::size_t i, std::size_t cell) {
+  cellOf_[i] = static_cast<std::uint32_t>(cell);
+  prevInCell_[i] = -1;
+  nextInCell_[i] = head_[cell];
+  if (head_[cell] >= 0)
+    prevInCell_[static_cast<std::size_t>(head_[cell])] = static_cast<std::int64_t>(i);
+  head_[cell] = static_cast<std::int64_t>(i);
+}
+
+void HardDiskSystem::removeFromCell(std::size_t i) {
+  const std::int64_t prev = prevInCell_[i], next = nextInCell_[i];
+  if (prev >= 0)
+    nextInCell_[static_cast<std::size_t>(prev)] = next;
+  else
+    head_[cellOf_[i]] = next;
+  if (next >= 0)
+    prevInCell_[static_cast<std::size_t>(next)] = prev;
+}
+
+void HardDiskSystem::stream(std::size_t i) {
+  const double dt = time_ - tp_[i];
+  if (dt == 0.0)
+    return;
+  const double g = p_.gravity;
+  const double y0 = d_.y[i], vy0 = d_.vy[i];
+  d_.x[i] += d_.vx[i] * dt;
+  d_.y[i] = y0 + vy0 * dt - 0.5 * g * dt * dt;
+  d_.vy[i] = vy0 - g * dt;
+  tp_[i] = time_;
+  if (watchSurface_ && !crossed_[i] && y0 < surface_ && d_.y[i] >= surface_ && d_.material[i] == groundMaterial_) {
+    // First upward crossing on this segment: y0 + vy0 τ - g τ²/2 = surface, smallest root.
+    const double h = surface_ - y0;
+    const double disc = std::max(0.0, vy0 * vy0 - 2.0 * g * h);
+    const double tau = vy0 > 0.0 ? 2.0 * h / (vy0 + std::sqrt(disc)) : dt;
+    crossed_[i] = 1;
+    crossings_.push_back(SurfaceCrossing{static_cast<std::uint32_t>(i), time_ - dt + tau,
+                                         d_.x[i] - d_.vx[i] * (dt - tau), d_.vx[i], vy0 - g * tau});
+  }
+}
+
+double HardDiskSystem::exitTime(double pos, double vel, double acc, double lo, double hi, int& side) const {
+  // Time until pos + vel τ + acc τ²/2 reaches lo (side -1) or hi (side +1); acc <= 0.
+  side = 0;
+  if (acc == 0.0) {
+    if (vel > 0.0 && hi < kInf) {
+      side = 1;
+      return std::max(0.0, (hi - pos) / vel);
+    }
+    if (vel < 0.0 && lo > -kInf) {
+      side = -1;
+      return std::max(0.0, (lo - pos) / vel);
+    }
+    return kInf;
+  }
+  const double g = -acc;
+  if (vel > 0.0 && hi < kInf) {
+    const double up = hi - pos, disc = vel * vel - 2.0 * g * up;
+    if (disc >= 0.0) {
+      side = 1;
+      return std::max(0.0, 2.0 * up / (vel + std::sqrt(disc)));
+    }
+  }
+  if (lo == -kInf)
+    return kInf;
+  side = -1;
+  const double down = std::max(0.0, pos - lo), root = std::sqrt(vel * vel + 2.0 * g * down);
+  return vel >= 0.0 ? (vel + root) / g : 2.0 * down / (root - vel);
+}
+
+void HardDiskSystem::cellEvent(std::size_t i, Event& best) const {
+  const std::size_t cx = cellOf_[i] % nx_, cy = cellOf_[i] / nx_;
+  const double xlo = (cx == 0 && !p_.periodicX) ? -kInf : cx * cellW_;
+  const double xhi = (cx + 1 == nx_ && !p_.periodicX) ? kInf : (cx + 1) * cellW_;
+  const double ylo = (cy == 0 && !p_.periodicY) ? -kInf : cy * cellH_;
+  const double yhi = (cy + 1 == ny_ && !p_.periodicY) ? kInf : (cy + 1) * cellH_;
+  int sx, sy;
+  const double tx = exitTime(d_.x[i], d_.vx[i], 0.0, xlo, xhi, sx);
+  const double ty = exitTime(d_.y[i], d_.vy[i], -p_.gravity, ylo, yhi, sy);
+  if (time_ + tx < best.t && sx != 0)
+    best = Event{time_ + tx, static_cast<std::uint32_t>(sx < 0 ? 0 : 1), EventType::Cell, 0};
+  if (time_ + ty < best.t && sy != 0)
+    best = Event{time_ + ty, static_cast<std::uint32_t>(sy < 0 ? 2 : 3), EventType::Cell, 0};
+}
+
+void HardDiskSystem::wallEvent(std::size_t i, Event& best) const {
+  const double r = d_.radius[i] * growth(time_), rdot = d_.radius[i] * p_.growthRate;
+  auto linear = [&](double pos, double vel, double size, std::uint32_t lowWall) {
+    // Low wall: pos + vel τ = r + ṙ τ; high wall: pos + vel τ = size - r - ṙ τ.
+    if (vel - rdot < 0.0) {
+      const double t = time_ + std::max(0.0, (pos - r) / (rdot - vel));
+      if (t < best.t)
+        best = Event{t, lowWall, EventType::Wall, 0};
+    }
+    if (vel + rdot > 0.0) {
+      const double t = time_ + std::max(0.0, (size - r - pos) / (vel + rdot));
+      if (t < best.t)
+        best = Event{t, lowWall + 1, EventType::Wall, 0};
+    }
+  };
+  if (!p_.periodicX)
+    linear(d_.x[i], d_.vx[i], p_.width, 0);
+  if (!p_.periodicY) {
+    if (p_.gravity == 0.0) {
+      linear(d_.y[i], d_.vy[i], p_.height, 2);
+    } else {
+      int side;
+      const double t = time_ + exitTime(d_.y[i], d_.vy[i], -p_.gravity, r, p_.height - r, side);
+      if (side != 0 && t < best.t)
+        best = Event{t, static_cast<std::uint32_t>(side < 0 ? 2 : 3), EventType::Wall, 0};
+    }
+  }
+}
+
+void HardDiskSystem::consider(std::size_t i, std::size_t j, Event& best) const {
+  // i is current; j is taken to the current time on the fly.
+  const double dtj = time_ - tp_[j], g = p_.gravity;
+  double rx = d_.x[j] + d_.vx[j] * dtj - d_.x[i];
+  double ry = d_.y[j] + (d_.vy[j] - 0.5 * g * dtj) * dtj - d_.y[i];
+  if (p_.periodicX)
+    rx -= p_.width * std::round(rx / p_.width);
+  if (p_.periodicY)
+    ry -= p_.height * std::round(ry / p_.height);
+  const double ux = d_.vx[j] - d_.vx[i], uy = d_.vy[j] - g * dtj - d_.vy[i];
+  const double sigma0 = d_.radius[i] + d_.radius[j];
+  const double sigma = sigma0 * growth(time_), sdot = sigma0 * p_.growthRate;
+  const double c = rx * rx + ry * ry - sigma * sigma;
+  const double b = rx * ux + ry * uy - sigma * sdot;
+  const double a = ux * ux + uy * uy - sdot * sdot;
+  double tau;
+  if (c <= 0.0) {
+    if (b >= 0.0)
+      return; // touching or overlapping by round-off, and separating
+    tau = 0.0;
+  } else {
+    if (b >= 0.0 && a >= 0.0)
+      return;
+    const double disc = b * b - a * c;
+    if (disc < 0.0)
+      return;
+    tau = c / (-b + std::sqrt(disc));
+  }
+  const double t = time_ + tau;
+  if (t < best.t)
+    best = Event{t, static_cast<std::uint32_t>(j), EventType::Pair, count_[j]};
+}
+
+void HardDiskSystem::predict(std::size_t i) {
+  Event best{kInf, 0, EventType::None, 0};
+  cellEvent(i, best);
+  wallEvent(i, best);
+  const long cx = static_cast<long>(cellOf_[i] % nx_), cy = static_cast<long>(cellOf_[i] / nx_);
+  const long reach = reach_[i];
+  forAxisCells(cy, reach, static_cast<long>(ny_), p_.periodicY, [&](long ky) {
+    forAxisCells(cx, reach, static_cast<long>(nx_), p_.periodicX, [&](long kx) {
+      for (std::int64_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
+           k = nextInCell_[static_cast<std::size_t>(k)]) {
+        const std::size_t j = static_cast<std::size_t>(k);
+        if (j != i && !isBig_[j])
+          consider(i, j, best);
+      }
+    });
+  });
+  for (std::uint32_t b : bigs_)
+    if (b != i)
+      consider(i, b, best);
+  next_[i] = best;
+  updateTree(i);
+}
+
+void HardDiskSystem::updateTree(std::size_t i) {
+  std::size_t pos = leaf0_ + i;
+  tree_[pos] = static_cast<std::uint32_t>(i);
+  const Event* ev = next_.data();
+  while (pos > 1) {
+    pos >>= 1;
+    const std::uint32_t a = tree_[2 * pos], b = tree_[2 * pos + 1];
+    const std::uint32_t winner = ev[a].t <= ev[b].t ? a : b;
+    if (tree_[pos] == winner && winner != i)
+      break; // nothing above can change
+    tree_[pos] = winner;
+  }
+}
+
+void HardDiskSystem::predictAll() {
+  const std::size_t n = d_.size();
+  for (std::size_t i = 0; i < n; ++i)
+    stream(i);
+  std::fill(tree_.begin(), tree_.end(), static_cast<std::uint32_t>(n));
+  for (std::size_t i = 0; i < n; ++i)
+    tree_[leaf0_ + i] = static_cast<std::uint32_t>(i);
+  for (std::size_t i = 0; i < n; ++i)
+    next_[i] = Event{kInf, 0, EventType::None, 0};
+  for (std::size_t i = 0; i < n; ++i)
+    predict(i); // the tree is rebuilt below
+
+  for (std::size_t pos = leaf0_ - 1; pos >= 1; --pos) {
+    const std::uint32_t a = tree_[2 * pos], b = tree_[2 * pos + 1];
+    tree_[pos] = next_[a].t <= next_[b].t ? a : b;
+  }
+}
+
+void HardDiskSystem::collide(std::size_t i, std::size_t j) {
+  stream(i);
+  stream(j);
+  double rx = d_.x[j] - d_.x[i], ry = d_.y[j] - d_.y[i];
+  if (p_.periodicX)
+    rx -= p_.width * std::round(rx / p_.width);
+  if (p_.periodicY)
+    ry -= p_.height * std::round(ry / p_.height);
+  const double dist = std::sqrt(rx * rx + ry * ry);
+  const double nx = rx / dist, ny = ry / dist;
+  const double approach = (d_.vx[i] - d_.vx[j]) * nx + (d_.vy[i] - d_.vy[j]) * ny;
+  const double mi = d_.mass[i], mj = d_.mass[j], mred = mi * mj / (mi + mj);
+  const double sigma0 = d_.radius[i] + d_.radius[j];
+  double e = p_.restitution;
+  if (p_.tcTime > 0.0 && (time_ - lastCollision_[i] < p_.tcTime || time_ - lastCollision_[j] < p_.tcTime))
+    e = 1.0;
+  const double J = std::max(0.0, mred * ((1.0 + e) * approach + 2.0 * sigma0 * p_.growthRate));
+  d_.vx[i] -= J / mi * nx;
+  d_.vy[i] -= J / mi * ny;
+  d_.vx[j] += J / mj * nx;
+  d_.vy[j] += J / mj * ny;
+  virial_ += sigma0 * growth(time_) * J;
+  ++count_[i];
+  ++count_[j];
+  lastCollision_[i] = lastCollision_[j] = time_;
+  ++pairCollisions_;
+  if (sourceMaterial_ >= 0 && (disturbed_[i] || disturbed_[j]))
+    disturbed_[i] = disturbed_[j] = 1;
+  if (log_)
+    log_->push_back(EventRecord{time_, EventType::Pair, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)});
+  predict(i);
+  predict(j);
+}
+
+void HardDiskSystem::hitWall(std::size_t i, std::uint32_t wall) {
+  stream(i);
+  double e = p_.wallRestitution;
+  if (p_.tcTime > 0.0 && time_ - lastCollision_[i] < p_.tcTime)
+    e = 1.0;
+  const double rdot = d_.radius[i] * p_.growthRate;
+  double& v = wall < 2 ? d_.vx[i] : d_.vy[i];
+  const double away = (wall % 2 == 0) ? 1.0 : -1.0; // direction pointing into the box
+  // Incoming speed towards the wall (relative to the growing radius), reversed and scaled.
+  const double incoming = std::max(0.0, -away * v + rdot);
+  double out = e * incoming + rdot;
+  if (wall == 2 && p_.gravity > 0.0) {
+    // A disk resting on the floor would collide infinitely often: give it a rebound of at
+    // least the speed that lifts it by 1e-6 of its radius.
+    out = std::max(out, std::sqrt(2.0 * p_.gravity * 1e-6 * d_.radius[i]));
+  }
+  v = away * out;
+  ++count_[i];
+  lastCollision_[i] = time_;
+  ++wallCollisions_;
+  if (log_)
+    log_->push_back(EventRecord{time_, EventType::Wall, static_cast<std::uint32_t>(i), wall});
+  predict(i);
+}
+
+void HardDiskSystem::crossCell(std::size_t i, std::uint32_t direction) {
+  stream(i);
+  long cx = static_cast<long>(cellOf_[i] % nx_), cy = static_cast<long>(cellOf_[i] / nx_);
+  switch (direction) {
+  case 0:
+    if (--cx < 0) {
+      cx = static_cast<long>(nx_) - 1;
+      d_.x[i] += p_.width;
+    }
+    break;
+  case 1:
+    if (++cx == static_cast<long>(nx_)) {
+      cx = 0;
+      d_.x[i] -= p_.width;
+    }
+    break;
+  case 2:
+    if (--cy < 0) {
+      cy = static_cast<long>(ny_) - 1;
+      d_.y[i] += p_.height;
+    }
+    break;
+  default:
+    if (++cy == static_cast<long>(ny_)) {
+      cy = 0;
+      d_.y[i] -= p_.height;
+    }
+    break;
+  }
+  removeFromCell(i);
+  insertInCell(i, static_cast<std::size_t>(cy) * nx_ + static_cast<std::size_t>(cx));
+  ++cellCrossings_;
+  if (log_)
+    log_->push_back(EventRecord{time_, EventType::Cell, static_cast<std::uint32_t>(i), direction});
+  predict(i);
+}
+
+bool HardDiskSystem::step(double limit) {
+  const std::size_t i = tree_[1];
+  const Event ev = next_[i];
+  if (!(ev.t < limit))
+    return false;
+  time_ = std::max(time_, ev.t);
+  switch (ev.type) {
+  case EventType::Pair:
+    if (count_[ev.partner] != ev.partnerCount) {
+      ++stale_;
+      stream(i);
+      predict(i);
+    } else {
+      collide(i, ev.partner);
+    }
+    break;
+  case EventType::Wall:
+    hitWall(i, ev.partner);
+    break;
+  case EventType::Cell:
+    crossCell(i, ev.partner);
+    break;
+  case EventType::None:
+    return false;
+  }
+  if (checkOverlaps_) {
+    verify(i);
+    if (ev.type == EventType::Pair)
+      verify(ev.partner);
+  }
+  return true;
+}
+
+void HardDiskSystem::verify(std::size_t i) const {
+  const double g = growth(time_);
+  auto check = [&](std::size_t j) {
+    if (j == i)
+      return;
+    const double dti = time_ - tp_[i], dtj = time_ - tp_[j], acc = p_.gravity;
+    double dx = d_.x[j] + d_.vx[j] * dtj - d_.x[i] - d_.vx[i] * dti;
+    double dy = d_.y[j] + (d_.vy[j] - 0.5 * acc * dtj) * dtj - d_.y[i] - (d_.vy[i] - 0.5 * acc * dti) * dti;
+    if (p_.periodicX)
+      dx -= p_.width * std::round(dx / p_.width);
+    if (p_.periodicY)
+      dy -= p_.height * std::round(dy / p_.height);
+    const double sigma = (d_.radius[i] + d_.radius[j]) * g;
+    if (std::sqrt(dx * dx + dy * dy) < sigma * (1.0 - 1e-9)) {
+      std::ostringstream msg;
+      msg << describeDisk(d_, i) << " overlaps " << describeDisk(d_, j) << " at t = " << time_;
+      throw std::logic_error(msg.str());
+    }
+  };
+  const long cx = static_cast<long>(cellOf_[i] % nx_), cy = static_cast<long>(cellOf_[i] / nx_);
+  forAxisCells(cy, reach_[i], static_cast<long>(ny_), p_.periodicY, [&](long ky) {
+    forAxisCells(cx, reach_[i], static_cast<long>(nx_), p_.periodicX, [&](long kx) {
+      for (std::int64_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
+           k = nextInCell_[static_cast<std::size_t>(k)])
+        check(static_cast<std::size_t>(k));
+    });
+  });
+  for (std::uint32_t b : bigs_)
+    check(b);
+  // Inside the box along walled axes.
+  const double r = d_.radius[i] * g, dti = time_ - tp_[i];
+  const double x = d_.x[i] + d_.vx[i] * dti, y = d_.y[i] + (d_.vy[i] - 0.5 * p_.gravity * dti) * dti;
+  const double tol = 1e-9 * r;
+  if ((!p_.periodicX && (x < r - tol || x > p_.width - r + tol)) ||
+      (!p_.periodicY && (y < r - tol || y > p_.height - r + tol))) {
+    std::ostringstream msg;
+    msg << describeDisk(d_, i) << " left the box at t = " << time_;
+    throw std::logic_error(msg.str());
+  }
+}
+
+void HardDiskSystem::advanceTo(double t, const ProgressCallback& progress) {
+  if (!(t >= time_) || !std::isfinite(t))
+    throw InputError("cannot advance hard disks backwards or to a non-finite time");
+  if (p_.growthRate > 0.0 && t > p_.growthEnd * (1.0 + 1e-12))
+    throw InputError("radius growth beyond the planned end of compression");
+  const double start = time_;
+  std::uint64_t events = 0;
+  while (step(t)) {
+    if ((++events & 0xFFFF) == 0 && progress)
+      reportProgress(progress, (time_ - start) / (t - start));
+  }
+  time_ = t;
+  for (std::size_t i = 0; i < d_.size(); ++i)
+    stream(i);
+}
+
+double HardDiskSystem::processEvents(std::uint64_t n) {
+  std::uint64_t done = 0;
+  while (done < n) {
+    const std::uint64_t staleBefore = stale_;
+    if (!step(kInf))
+      break;
+    if (stale_ == staleBefore)
+      ++done;
+  }
+  return time_;
+}
+
+double HardDiskSystem::kineticEnergy() const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < d_.size(); ++i) {
+    const double vy = d_.vy[i] - p_.gravity * (time_ - tp_[i]);
+    e += 0.5 * d_.mass[i] * (d_.vx[i] * d_.vx[i] + vy * vy);
+  }
+  return e;
+}
+
+void HardDiskSystem::momentum(double& px, double& py) const {
+  px = py = 0.0;
+  for (std::size_t i = 0; i < d_.size(); ++i) {
+    px += d_.mass[i] * d_.vx[i];
+    py += d_.mass[i] * (d_.vy[i] - p_.gravity * (time_ - tp_[i]));
+  }
+}
+
+void HardDiskSystem::watchSurface(double level, int groundMaterial) {
+  watchSurface_ = true;
+  surface_ = level;
+  groundMaterial_ = groundMaterial;
+  crossed_.assign(d_.size(), 0);
+  crossings_.clear();
+}
+
+void HardDiskSystem::trackDisturbance(int sourceMaterial) {
+  sourceMaterial_ = sourceMaterial;
+  disturbed_.assign(d_.size(), 0);
+  for (std::size_t i = 0; i < d_.size(); ++i)
+    disturbed_[i] = d_.material[i] == sourceMaterial;
+}
+
+void HardDiskSystem::scaleVelocities(double factor) {
+  for (std::size_t i = 0; i < d_.size(); ++i) {
+    stream(i);
+    d_.vx[i] *= factor;
+    d_.vy[i] *= factor;
+    ++count_[i];
+  }
+  predictAll();
+}
+
+} // namespace craterkit
