@@ -115,8 +115,8 @@ protected:
   double NormalRestitution = 0.55;
   double TangentialRestitution = 0.55;
   double StaticFriction = 0.6;
-  double RollingFriction = 1.05;
-  double TwistingFriction = 1.3;
+  double RollingFriction = 0.6;
+  double TwistingFriction = 0.75;
   double ShapeParameter = 0.5;
   double Cohesion = 0.0;
   double YoungsModulus = 1.0e8;

@@ -298,19 +298,55 @@ void DemSolver::sortSpatially() {
 void DemSolver::buildNeighbourList() {
   const double* x = state_.position.data();
   const double* r = state_.radius.data();
+  // Cells fit the ordinary particles; a few much larger ones (an impactor) search a wider
+  // range themselves and every other particle checks them directly, so one big sphere does
+  // not make every cell (and every search) eight times larger.
+  const double rmin = n_ ? *std::min_element(state_.radius.begin(), state_.radius.end()) : 0.0;
+  std::vector<std::uint32_t> large;
+  double rsmall = 0.0;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (r[i] > 1.5 * rmin)
+      large.push_back(static_cast<std::uint32_t>(i));
+    else
+      rsmall = std::max(rsmall, r[i]);
+  }
+  if (large.size() > 64) {
+    large.clear();
+    rsmall = rmax_;
+  }
+  std::vector<char> isLarge(large.empty() ? 0 : n_, 0);
+  for (std::uint32_t b : large)
+    isLarge[b] = 1;
   CellList cells;
-  cells.build(x, n_, 2.0 * rmax_ + skin_);
+  cells.build(x, n_, 2.0 * rsmall + skin_);
+  // Calls f(j) for every j > i within reach of i.
+  auto forEachNeighbour = [&](std::size_t i, auto&& f) {
+    auto test = [&](std::size_t j) {
+      const double reach = r[i] + r[j] + skin_;
+      const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1], d2 = x[3 * j + 2] - x[3 * i + 2];
+      if (d0 * d0 + d1 * d1 + d2 * d2 < reach * reach)
+        f(j);
+    };
+    if (large.empty()) {
+      cells.forEachCandidate(&x[3 * i], r[i] + rmax_ + skin_, [&](std::size_t j) {
+        if (j > i)
+          test(j);
+      });
+      return;
+    }
+    cells.forEachCandidate(&x[3 * i], r[i] + rsmall + skin_, [&](std::size_t j) {
+      if (j > i && !isLarge[j])
+        test(j);
+    });
+    for (std::uint32_t b : large)
+      if (b > i)
+        test(b);
+  };
   std::vector<std::size_t> count(n_ + 1, 0);
 #pragma omp parallel for schedule(dynamic, 256) if (n_ >= kParallelMin)
   for (std::size_t i = 0; i < n_; ++i) {
     std::size_t c = 0;
-    cells.forEachCandidate(&x[3 * i], r[i] + rmax_ + skin_, [&](std::size_t j) {
-      if (j <= i)
-        return;
-      const double reach = r[i] + r[j] + skin_;
-      const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1], d2 = x[3 * j + 2] - x[3 * i + 2];
-      c += (d0 * d0 + d1 * d1 + d2 * d2 < reach * reach);
-    });
+    forEachNeighbour(i, [&](std::size_t) { ++c; });
     count[i + 1] = c;
   }
   std::vector<std::size_t> start(n_ + 1, 0);
@@ -324,14 +360,7 @@ void DemSolver::buildNeighbourList() {
 #pragma omp for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n_; ++i) {
       buffer.clear();
-      cells.forEachCandidate(&x[3 * i], r[i] + rmax_ + skin_, [&](std::size_t j) {
-        if (j <= i)
-          return;
-        const double reach = r[i] + r[j] + skin_;
-        const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1], d2 = x[3 * j + 2] - x[3 * i + 2];
-        if (d0 * d0 + d1 * d1 + d2 * d2 < reach * reach)
-          buffer.push_back(static_cast<std::uint32_t>(j));
-      });
+      forEachNeighbour(i, [&](std::size_t j) { buffer.push_back(static_cast<std::uint32_t>(j)); });
       std::sort(buffer.begin(), buffer.end());
       std::copy(buffer.begin(), buffer.end(), newJ.begin() + start[i]);
       std::fill(newI.begin() + start[i], newI.begin() + start[i + 1], static_cast<std::uint32_t>(i));

@@ -88,6 +88,12 @@ int main(int argc, char** argv) {
   const StiffnessProposal k = proposeStiffness(kRadius, kDensity, kSpeed, 0.01, kGravity, box.depth, 30.0);
   p.contact.kN = k.kN;
   p.dt = k.dt;
+  // The coefficients run.py gives the peers (EPS, MU_S, MU_R, MU_T, BETA there).
+  p.contact.restitutionN = p.contact.restitutionT = 0.55;
+  p.contact.muS = 0.6;
+  p.contact.muR = 1.05;
+  p.contact.muT = 1.3;
+  p.contact.beta = 0.5;
   DemSolver solver(s, p);
   const auto t0 = std::chrono::steady_clock::now();
   for (long i = 0; i < steps; ++i)

@@ -37,11 +37,11 @@ def load_plugin():
     return simple
 
 
-def fetch(proxy):
-    """The VTK data object of a proxy's output, updated."""
+def fetch(proxy, port=0):
+    """The VTK data object of a proxy's output port, updated."""
     from paraview import servermanager
     proxy.UpdatePipeline()
-    return servermanager.Fetch(proxy)
+    return servermanager.Fetch(proxy, idx=port)
 
 
 def field_value(data, name, default=None):
