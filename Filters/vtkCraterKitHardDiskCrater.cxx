@@ -267,10 +267,27 @@ int vtkCraterKitHardDiskCrater::RequestData(
   bridge::addField(fd, "ShockFrontRadius", run.shockFront().back());
   bridge::addField(fd, "ImpactPoint", impact, 3);
   bridge::addField(fd, "SurfaceHeight", run.surfaceLevel());
+  const double box[3] = { run.system().params().width, 0.0, run.system().params().height };
+  bridge::addField(fd, "BoxSize", box, 3);
   bridge::addField(fd, "EjectedDisks", static_cast<double>(ejections.size()));
   bridge::addField(fd, "MeanEjectionAngle", meanAngle);
   bridge::addField(fd, "CraterDepth", depth);
   bridge::addField(fd, "CraterWidth", width);
+  // Per ejected disk (first upward crossing of the original surface, exact on its path), and
+  // the shock front at every frame so far: for plots without re-running.
+  auto series = [&](const char* name, std::size_t count, auto&& value) {
+    auto a = vtkSmartPointer<vtkDoubleArray>::New();
+    a->SetName(name);
+    a->SetNumberOfTuples(static_cast<vtkIdType>(count));
+    for (std::size_t k = 0; k < count; ++k)
+      a->SetValue(static_cast<vtkIdType>(k), value(k));
+    fd->AddArray(a);
+  };
+  series("EjectionAngle", ejections.size(), [&](std::size_t k) { return ejections[k].angleDeg; });
+  series("EjectionDistance", ejections.size(), [&](std::size_t k) { return ejections[k].distance; });
+  series("EjectionSpeed", ejections.size(), [&](std::size_t k) { return ejections[k].speed; });
+  series("EjectionTime", ejections.size(), [&](std::size_t k) { return ejections[k].time; });
+  series("ShockFrontHistory", run.shockFront().size(), [&](std::size_t k) { return run.shockFront()[k]; });
   bridge::addField(fd, "GroundDisks", static_cast<double>(std::count(d.material.begin(), d.material.end(), 0)));
   for (int port = 0; port < 3; ++port)
   {

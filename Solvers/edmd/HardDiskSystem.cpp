@@ -19,6 +19,15 @@ std::string describeDisk(const HardDisks& d, std::size_t i) {
   return s.str();
 }
 
+// Nearest periodic image of a separation (|d| < 1.5 L for disks in neighbouring cells).
+inline double minimumImage(double d, double length) {
+  if (d > 0.5 * length)
+    return d - length;
+  if (d < -0.5 * length)
+    return d + length;
+  return d;
+}
+
 // Distinct cell indices within `reach` of c along an axis of n cells.
 template <class F> void forAxisCells(long c, long reach, long n, bool periodic, F&& f) {
   if (periodic && 2 * reach + 1 >= n) {
@@ -75,41 +84,47 @@ HardDiskSystem::HardDiskSystem(const HardDisks& disks, const HardDiskParams& par
   const std::size_t n = d_.size();
   if (n == 0)
     throw InputError("no disks to simulate");
+  if (d_.x.size() != n || d_.y.size() != n || d_.vx.size() != n || d_.vy.size() != n || d_.mass.size() != n ||
+      d_.material.size() != n || d_.id.size() != n)
+    throw InputError("the disk arrays differ in length");
+  h_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    h_[i] = Hot{disks.x[i], disks.y[i], disks.vx[i], disks.vy[i], 0.0, disks.radius[i], disks.mass[i], 0, -1};
   if (n >= std::numeric_limits<std::uint32_t>::max() / 2)
     throw InputError("too many disks");
   for (std::size_t i = 0; i < n; ++i) {
-    const double vals[5] = {d_.x[i], d_.y[i], d_.vx[i], d_.vy[i], d_.radius[i]};
+    const double vals[5] = {h_[i].x, h_[i].y, h_[i].vx, h_[i].vy, h_[i].r};
     for (double v : vals)
       if (!std::isfinite(v))
         throw InputError(describeDisk(d_, i) + " has a non-finite position, velocity or radius");
-    if (!(d_.radius[i] > 0.0))
+    if (!(h_[i].r > 0.0))
       throw InputError(describeDisk(d_, i) + " has a non-positive radius");
-    if (!(d_.mass[i] > 0.0) || !std::isfinite(d_.mass[i]))
+    if (!(h_[i].m > 0.0) || !std::isfinite(h_[i].m))
       throw InputError(describeDisk(d_, i) + " has a non-positive mass");
-    const double r = d_.radius[i];
-    const bool inX = p_.periodicX ? (d_.x[i] >= 0.0 && d_.x[i] < p_.width) : (d_.x[i] >= r && d_.x[i] <= p_.width - r);
-    const bool inY = p_.periodicY ? (d_.y[i] >= 0.0 && d_.y[i] < p_.height) : (d_.y[i] >= r && d_.y[i] <= p_.height - r);
+    const double r = h_[i].r;
+    const bool inX = p_.periodicX ? (h_[i].x >= 0.0 && h_[i].x < p_.width) : (h_[i].x >= r && h_[i].x <= p_.width - r);
+    const bool inY = p_.periodicY ? (h_[i].y >= 0.0 && h_[i].y < p_.height) : (h_[i].y >= r && h_[i].y <= p_.height - r);
     if (!inX || !inY)
       throw InputError(describeDisk(d_, i) + " is not inside the box (or is larger than it)");
   }
   // Small and big disks: cells fit the small ones.
-  const double rmin = *std::min_element(d_.radius.begin(), d_.radius.end());
-  const double rmax = *std::max_element(d_.radius.begin(), d_.radius.end());
+  const double rmin = *std::min_element(disks.radius.begin(), disks.radius.end());
+  const double rmax = *std::max_element(disks.radius.begin(), disks.radius.end());
   isBig_.assign(n, 0);
   smallMax_ = rmax;
   if (rmax > 3.0 * rmin) {
     std::size_t big = 0;
     double sm = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-      if (d_.radius[i] > 3.0 * rmin)
+      if (h_[i].r > 3.0 * rmin)
         ++big;
       else
-        sm = std::max(sm, d_.radius[i]);
+        sm = std::max(sm, h_[i].r);
     }
     if (big <= 64) {
       smallMax_ = sm;
       for (std::size_t i = 0; i < n; ++i)
-        if (d_.radius[i] > 3.0 * rmin) {
+        if (h_[i].r > 3.0 * rmin) {
           isBig_[i] = 1;
           bigs_.push_back(static_cast<std::uint32_t>(i));
         }
@@ -131,24 +146,21 @@ HardDiskSystem::HardDiskSystem(const HardDisks& disks, const HardDiskParams& par
   cellH_ = p_.height / ny_;
   reach_.assign(n, 1);
   for (std::uint32_t b : bigs_)
-    reach_[b] = static_cast<int>(std::ceil((d_.radius[b] + smallMax_) * gEnd / std::min(cellW_, cellH_)));
+    reach_[b] = static_cast<int>(std::ceil((h_[b].r + smallMax_) * gEnd / std::min(cellW_, cellH_)));
 
   head_.assign(nx_ * ny_, -1);
-  nextInCell_.assign(n, -1);
   prevInCell_.assign(n, -1);
   cellOf_.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t cx = std::min(nx_ - 1, static_cast<std::size_t>(d_.x[i] / cellW_));
-    const std::size_t cy = std::min(ny_ - 1, static_cast<std::size_t>(d_.y[i] / cellH_));
+    const std::size_t cx = std::min(nx_ - 1, static_cast<std::size_t>(h_[i].x / cellW_));
+    const std::size_t cy = std::min(ny_ - 1, static_cast<std::size_t>(h_[i].y / cellH_));
     insertInCell(i, cy * nx_ + cx);
   }
-  tp_.assign(n, 0.0);
-  count_.assign(n, 0);
   lastCollision_.assign(n, -kInf);
   next_.assign(n + 1, Event{kInf, 0, EventType::None, 0});
   while (leaf0_ < n)
     leaf0_ *= 2;
-  tree_.assign(2 * leaf0_, static_cast<std::uint32_t>(n));
+  tree_.assign(2 * leaf0_, Node{kInf, static_cast<std::uint32_t>(n)});
 
   // Overlapping input is an error: the dynamics of hard disks is undefined for it.
   const double gap = smallestGapNearby();
@@ -158,6 +170,16 @@ HardDiskSystem::HardDiskSystem(const HardDisks& disks, const HardDiskParams& par
   predictAll();
 }
 
+const HardDisks& HardDiskSystem::disks() const {
+  for (std::size_t i = 0; i < h_.size(); ++i) {
+    d_.x[i] = h_[i].x;
+    d_.y[i] = h_[i].y;
+    d_.vx[i] = h_[i].vx;
+    d_.vy[i] = h_[i].vy;
+  }
+  return d_;
+}
+
 double HardDiskSystem::smallestGap() const {
   // Brute force over neighbouring cells plus all big disks (tests call it on small systems).
   double best = kInf;
@@ -165,12 +187,12 @@ double HardDiskSystem::smallestGap() const {
   const double g = growth(time_);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) {
-      double dx = d_.x[j] - d_.x[i], dy = d_.y[j] - d_.y[i];
+      double dx = h_[j].x - h_[i].x, dy = h_[j].y - h_[i].y;
       if (p_.periodicX)
         dx -= p_.width * std::round(dx / p_.width);
       if (p_.periodicY)
         dy -= p_.height * std::round(dy / p_.height);
-      best = std::min(best, std::sqrt(dx * dx + dy * dy) - (d_.radius[i] + d_.radius[j]) * g);
+      best = std::min(best, std::sqrt(dx * dx + dy * dy) - (h_[i].r + h_[j].r) * g);
     }
   return best;
 }
@@ -179,21 +201,21 @@ double HardDiskSystem::smallestGapNearby() const {
   double best = kInf;
   const double g = growth(time_);
   auto gap = [&](std::size_t i, std::size_t j) {
-    const double dti = time_ - tp_[i], dtj = time_ - tp_[j], acc = p_.gravity;
-    double dx = d_.x[j] + d_.vx[j] * dtj - d_.x[i] - d_.vx[i] * dti;
-    double dy = d_.y[j] + (d_.vy[j] - 0.5 * acc * dtj) * dtj - d_.y[i] - (d_.vy[i] - 0.5 * acc * dti) * dti;
+    const double dti = time_ - h_[i].t, dtj = time_ - h_[j].t, acc = p_.gravity;
+    double dx = h_[j].x + h_[j].vx * dtj - h_[i].x - h_[i].vx * dti;
+    double dy = h_[j].y + (h_[j].vy - 0.5 * acc * dtj) * dtj - h_[i].y - (h_[i].vy - 0.5 * acc * dti) * dti;
     if (p_.periodicX)
       dx -= p_.width * std::round(dx / p_.width);
     if (p_.periodicY)
       dy -= p_.height * std::round(dy / p_.height);
-    best = std::min(best, std::sqrt(dx * dx + dy * dy) - (d_.radius[i] + d_.radius[j]) * g);
+    best = std::min(best, std::sqrt(dx * dx + dy * dy) - (h_[i].r + h_[j].r) * g);
   };
   for (std::size_t i = 0; i < d_.size(); ++i) {
     const long cx = static_cast<long>(cellOf_[i] % nx_), cy = static_cast<long>(cellOf_[i] / nx_);
     forAxisCells(cy, reach_[i], static_cast<long>(ny_), p_.periodicY, [&](long ky) {
       forAxisCells(cx, reach_[i], static_cast<long>(nx_), p_.periodicX, [&](long kx) {
-        for (std::int64_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
-             k = nextInCell_[static_cast<std::size_t>(k)])
+        for (std::int32_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
+             k = h_[static_cast<std::size_t>(k)].next)
           if (static_cast<std::size_t>(k) > i && !isBig_[static_cast<std::size_t>(k)])
             gap(i, static_cast<std::size_t>(k));
       });
@@ -208,16 +230,16 @@ double HardDiskSystem::smallestGapNearby() const {
 void HardDiskSystem::insertInCell(std::size_t i, std::size_t cell) {
   cellOf_[i] = static_cast<std::uint32_t>(cell);
   prevInCell_[i] = -1;
-  nextInCell_[i] = head_[cell];
+  h_[i].next = head_[cell];
   if (head_[cell] >= 0)
-    prevInCell_[static_cast<std::size_t>(head_[cell])] = static_cast<std::int64_t>(i);
-  head_[cell] = static_cast<std::int64_t>(i);
+    prevInCell_[static_cast<std::size_t>(head_[cell])] = static_cast<std::int32_t>(i);
+  head_[cell] = static_cast<std::int32_t>(i);
 }
 
 void HardDiskSystem::removeFromCell(std::size_t i) {
-  const std::int64_t prev = prevInCell_[i], next = nextInCell_[i];
+  const std::int32_t prev = prevInCell_[i], next = h_[i].next;
   if (prev >= 0)
-    nextInCell_[static_cast<std::size_t>(prev)] = next;
+    h_[static_cast<std::size_t>(prev)].next = next;
   else
     head_[cellOf_[i]] = next;
   if (next >= 0)
@@ -225,23 +247,23 @@ void HardDiskSystem::removeFromCell(std::size_t i) {
 }
 
 void HardDiskSystem::stream(std::size_t i) {
-  const double dt = time_ - tp_[i];
+  const double dt = time_ - h_[i].t;
   if (dt == 0.0)
     return;
   const double g = p_.gravity;
-  const double y0 = d_.y[i], vy0 = d_.vy[i];
-  d_.x[i] += d_.vx[i] * dt;
-  d_.y[i] = y0 + vy0 * dt - 0.5 * g * dt * dt;
-  d_.vy[i] = vy0 - g * dt;
-  tp_[i] = time_;
-  if (watchSurface_ && !crossed_[i] && y0 < surface_ && d_.y[i] >= surface_ && d_.material[i] == groundMaterial_) {
+  const double y0 = h_[i].y, vy0 = h_[i].vy;
+  h_[i].x += h_[i].vx * dt;
+  h_[i].y = y0 + vy0 * dt - 0.5 * g * dt * dt;
+  h_[i].vy = vy0 - g * dt;
+  h_[i].t = time_;
+  if (watchSurface_ && !crossed_[i] && y0 < surface_ && h_[i].y >= surface_ && d_.material[i] == groundMaterial_) {
     // First upward crossing on this segment: y0 + vy0 τ - g τ²/2 = surface, smallest root.
     const double h = surface_ - y0;
     const double disc = std::max(0.0, vy0 * vy0 - 2.0 * g * h);
     const double tau = vy0 > 0.0 ? 2.0 * h / (vy0 + std::sqrt(disc)) : dt;
     crossed_[i] = 1;
     crossings_.push_back(SurfaceCrossing{static_cast<std::uint32_t>(i), time_ - dt + tau,
-                                         d_.x[i] - d_.vx[i] * (dt - tau), d_.vx[i], vy0 - g * tau});
+                                         h_[i].x - h_[i].vx * (dt - tau), h_[i].vx, vy0 - g * tau});
   }
 }
 
@@ -281,8 +303,8 @@ void HardDiskSystem::cellEvent(std::size_t i, Event& best) const {
   const double ylo = (cy == 0 && !p_.periodicY) ? -kInf : cy * cellH_;
   const double yhi = (cy + 1 == ny_ && !p_.periodicY) ? kInf : (cy + 1) * cellH_;
   int sx, sy;
-  const double tx = exitTime(d_.x[i], d_.vx[i], 0.0, xlo, xhi, sx);
-  const double ty = exitTime(d_.y[i], d_.vy[i], -p_.gravity, ylo, yhi, sy);
+  const double tx = exitTime(h_[i].x, h_[i].vx, 0.0, xlo, xhi, sx);
+  const double ty = exitTime(h_[i].y, h_[i].vy, -p_.gravity, ylo, yhi, sy);
   if (time_ + tx < best.t && sx != 0)
     best = Event{time_ + tx, static_cast<std::uint32_t>(sx < 0 ? 0 : 1), EventType::Cell, 0};
   if (time_ + ty < best.t && sy != 0)
@@ -290,7 +312,7 @@ void HardDiskSystem::cellEvent(std::size_t i, Event& best) const {
 }
 
 void HardDiskSystem::wallEvent(std::size_t i, Event& best) const {
-  const double r = d_.radius[i] * growth(time_), rdot = d_.radius[i] * p_.growthRate;
+  const double r = h_[i].r * growth(time_), rdot = h_[i].r * p_.growthRate;
   auto linear = [&](double pos, double vel, double size, std::uint32_t lowWall) {
     // Low wall: pos + vel τ = r + ṙ τ; high wall: pos + vel τ = size - r - ṙ τ.
     if (vel - rdot < 0.0) {
@@ -305,13 +327,13 @@ void HardDiskSystem::wallEvent(std::size_t i, Event& best) const {
     }
   };
   if (!p_.periodicX)
-    linear(d_.x[i], d_.vx[i], p_.width, 0);
+    linear(h_[i].x, h_[i].vx, p_.width, 0);
   if (!p_.periodicY) {
     if (p_.gravity == 0.0) {
-      linear(d_.y[i], d_.vy[i], p_.height, 2);
+      linear(h_[i].y, h_[i].vy, p_.height, 2);
     } else {
       int side;
-      const double t = time_ + exitTime(d_.y[i], d_.vy[i], -p_.gravity, r, p_.height - r, side);
+      const double t = time_ + exitTime(h_[i].y, h_[i].vy, -p_.gravity, r, p_.height - r, side);
       if (side != 0 && t < best.t)
         best = Event{t, static_cast<std::uint32_t>(side < 0 ? 2 : 3), EventType::Wall, 0};
     }
@@ -320,15 +342,15 @@ void HardDiskSystem::wallEvent(std::size_t i, Event& best) const {
 
 void HardDiskSystem::consider(std::size_t i, std::size_t j, Event& best) const {
   // i is current; j is taken to the current time on the fly.
-  const double dtj = time_ - tp_[j], g = p_.gravity;
-  double rx = d_.x[j] + d_.vx[j] * dtj - d_.x[i];
-  double ry = d_.y[j] + (d_.vy[j] - 0.5 * g * dtj) * dtj - d_.y[i];
+  const double dtj = time_ - h_[j].t, g = p_.gravity;
+  double rx = h_[j].x + h_[j].vx * dtj - h_[i].x;
+  double ry = h_[j].y + (h_[j].vy - 0.5 * g * dtj) * dtj - h_[i].y;
   if (p_.periodicX)
-    rx -= p_.width * std::round(rx / p_.width);
+    rx = minimumImage(rx, p_.width);
   if (p_.periodicY)
-    ry -= p_.height * std::round(ry / p_.height);
-  const double ux = d_.vx[j] - d_.vx[i], uy = d_.vy[j] - g * dtj - d_.vy[i];
-  const double sigma0 = d_.radius[i] + d_.radius[j];
+    ry = minimumImage(ry, p_.height);
+  const double ux = h_[j].vx - h_[i].vx, uy = h_[j].vy - g * dtj - h_[i].vy;
+  const double sigma0 = h_[i].r + h_[j].r;
   const double sigma = sigma0 * growth(time_), sdot = sigma0 * p_.growthRate;
   const double c = rx * rx + ry * ry - sigma * sigma;
   const double b = rx * ux + ry * uy - sigma * sdot;
@@ -348,7 +370,7 @@ void HardDiskSystem::consider(std::size_t i, std::size_t j, Event& best) const {
   }
   const double t = time_ + tau;
   if (t < best.t)
-    best = Event{t, static_cast<std::uint32_t>(j), EventType::Pair, count_[j]};
+    best = Event{t, static_cast<std::uint32_t>(j), EventType::Pair, h_[j].count};
 }
 
 void HardDiskSystem::predict(std::size_t i) {
@@ -359,8 +381,8 @@ void HardDiskSystem::predict(std::size_t i) {
   const long reach = reach_[i];
   forAxisCells(cy, reach, static_cast<long>(ny_), p_.periodicY, [&](long ky) {
     forAxisCells(cx, reach, static_cast<long>(nx_), p_.periodicX, [&](long kx) {
-      for (std::int64_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
-           k = nextInCell_[static_cast<std::size_t>(k)]) {
+      for (std::int32_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
+           k = h_[static_cast<std::size_t>(k)].next) {
         const std::size_t j = static_cast<std::size_t>(k);
         if (j != i && !isBig_[j])
           consider(i, j, best);
@@ -376,15 +398,16 @@ void HardDiskSystem::predict(std::size_t i) {
 
 void HardDiskSystem::updateTree(std::size_t i) {
   std::size_t pos = leaf0_ + i;
-  tree_[pos] = static_cast<std::uint32_t>(i);
-  const Event* ev = next_.data();
+  Node* tree = tree_.data();
+  tree[pos] = Node{next_[i].t, static_cast<std::uint32_t>(i)};
   while (pos > 1) {
     pos >>= 1;
-    const std::uint32_t a = tree_[2 * pos], b = tree_[2 * pos + 1];
-    const std::uint32_t winner = ev[a].t <= ev[b].t ? a : b;
-    if (tree_[pos] == winner && winner != i)
-      break; // nothing above can change
-    tree_[pos] = winner;
+    const Node& a = tree[2 * pos];
+    const Node& b = tree[2 * pos + 1];
+    const Node& winner = a.t <= b.t ? a : b;
+    if (tree[pos].disk == winner.disk && winner.disk != i)
+      break; // the same disk with the same time: nothing above can change
+    tree[pos] = winner;
   }
 }
 
@@ -392,44 +415,39 @@ void HardDiskSystem::predictAll() {
   const std::size_t n = d_.size();
   for (std::size_t i = 0; i < n; ++i)
     stream(i);
-  std::fill(tree_.begin(), tree_.end(), static_cast<std::uint32_t>(n));
-  for (std::size_t i = 0; i < n; ++i)
-    tree_[leaf0_ + i] = static_cast<std::uint32_t>(i);
-  for (std::size_t i = 0; i < n; ++i)
-    next_[i] = Event{kInf, 0, EventType::None, 0};
   for (std::size_t i = 0; i < n; ++i)
     predict(i); // the tree is rebuilt below
-
-  for (std::size_t pos = leaf0_ - 1; pos >= 1; --pos) {
-    const std::uint32_t a = tree_[2 * pos], b = tree_[2 * pos + 1];
-    tree_[pos] = next_[a].t <= next_[b].t ? a : b;
-  }
+  std::fill(tree_.begin(), tree_.end(), Node{kInf, static_cast<std::uint32_t>(n)});
+  for (std::size_t i = 0; i < n; ++i)
+    tree_[leaf0_ + i] = Node{next_[i].t, static_cast<std::uint32_t>(i)};
+  for (std::size_t pos = leaf0_ - 1; pos >= 1; --pos)
+    tree_[pos] = tree_[2 * pos].t <= tree_[2 * pos + 1].t ? tree_[2 * pos] : tree_[2 * pos + 1];
 }
 
 void HardDiskSystem::collide(std::size_t i, std::size_t j) {
   stream(i);
   stream(j);
-  double rx = d_.x[j] - d_.x[i], ry = d_.y[j] - d_.y[i];
+  double rx = h_[j].x - h_[i].x, ry = h_[j].y - h_[i].y;
   if (p_.periodicX)
     rx -= p_.width * std::round(rx / p_.width);
   if (p_.periodicY)
     ry -= p_.height * std::round(ry / p_.height);
   const double dist = std::sqrt(rx * rx + ry * ry);
   const double nx = rx / dist, ny = ry / dist;
-  const double approach = (d_.vx[i] - d_.vx[j]) * nx + (d_.vy[i] - d_.vy[j]) * ny;
-  const double mi = d_.mass[i], mj = d_.mass[j], mred = mi * mj / (mi + mj);
-  const double sigma0 = d_.radius[i] + d_.radius[j];
+  const double approach = (h_[i].vx - h_[j].vx) * nx + (h_[i].vy - h_[j].vy) * ny;
+  const double mi = h_[i].m, mj = h_[j].m, mred = mi * mj / (mi + mj);
+  const double sigma0 = h_[i].r + h_[j].r;
   double e = p_.restitution;
   if (p_.tcTime > 0.0 && (time_ - lastCollision_[i] < p_.tcTime || time_ - lastCollision_[j] < p_.tcTime))
     e = 1.0;
   const double J = std::max(0.0, mred * ((1.0 + e) * approach + 2.0 * sigma0 * p_.growthRate));
-  d_.vx[i] -= J / mi * nx;
-  d_.vy[i] -= J / mi * ny;
-  d_.vx[j] += J / mj * nx;
-  d_.vy[j] += J / mj * ny;
+  h_[i].vx -= J / mi * nx;
+  h_[i].vy -= J / mi * ny;
+  h_[j].vx += J / mj * nx;
+  h_[j].vy += J / mj * ny;
   virial_ += sigma0 * growth(time_) * J;
-  ++count_[i];
-  ++count_[j];
+  ++h_[i].count;
+  ++h_[j].count;
   lastCollision_[i] = lastCollision_[j] = time_;
   ++pairCollisions_;
   if (sourceMaterial_ >= 0 && (disturbed_[i] || disturbed_[j]))
@@ -445,8 +463,8 @@ void HardDiskSystem::hitWall(std::size_t i, std::uint32_t wall) {
   double e = p_.wallRestitution;
   if (p_.tcTime > 0.0 && time_ - lastCollision_[i] < p_.tcTime)
     e = 1.0;
-  const double rdot = d_.radius[i] * p_.growthRate;
-  double& v = wall < 2 ? d_.vx[i] : d_.vy[i];
+  const double rdot = h_[i].r * p_.growthRate;
+  double& v = wall < 2 ? h_[i].vx : h_[i].vy;
   const double away = (wall % 2 == 0) ? 1.0 : -1.0; // direction pointing into the box
   // Incoming speed towards the wall (relative to the growing radius), reversed and scaled.
   const double incoming = std::max(0.0, -away * v + rdot);
@@ -454,10 +472,10 @@ void HardDiskSystem::hitWall(std::size_t i, std::uint32_t wall) {
   if (wall == 2 && p_.gravity > 0.0) {
     // A disk resting on the floor would collide infinitely often: give it a rebound of at
     // least the speed that lifts it by 1e-6 of its radius.
-    out = std::max(out, std::sqrt(2.0 * p_.gravity * 1e-6 * d_.radius[i]));
+    out = std::max(out, std::sqrt(2.0 * p_.gravity * 1e-6 * h_[i].r));
   }
   v = away * out;
-  ++count_[i];
+  ++h_[i].count;
   lastCollision_[i] = time_;
   ++wallCollisions_;
   if (log_)
@@ -472,25 +490,25 @@ void HardDiskSystem::crossCell(std::size_t i, std::uint32_t direction) {
   case 0:
     if (--cx < 0) {
       cx = static_cast<long>(nx_) - 1;
-      d_.x[i] += p_.width;
+      h_[i].x += p_.width;
     }
     break;
   case 1:
     if (++cx == static_cast<long>(nx_)) {
       cx = 0;
-      d_.x[i] -= p_.width;
+      h_[i].x -= p_.width;
     }
     break;
   case 2:
     if (--cy < 0) {
       cy = static_cast<long>(ny_) - 1;
-      d_.y[i] += p_.height;
+      h_[i].y += p_.height;
     }
     break;
   default:
     if (++cy == static_cast<long>(ny_)) {
       cy = 0;
-      d_.y[i] -= p_.height;
+      h_[i].y -= p_.height;
     }
     break;
   }
@@ -503,14 +521,14 @@ void HardDiskSystem::crossCell(std::size_t i, std::uint32_t direction) {
 }
 
 bool HardDiskSystem::step(double limit) {
-  const std::size_t i = tree_[1];
+  const std::size_t i = tree_[1].disk;
   const Event ev = next_[i];
   if (!(ev.t < limit))
     return false;
   time_ = std::max(time_, ev.t);
   switch (ev.type) {
   case EventType::Pair:
-    if (count_[ev.partner] != ev.partnerCount) {
+    if (h_[ev.partner].count != ev.partnerCount) {
       ++stale_;
       stream(i);
       predict(i);
@@ -540,14 +558,14 @@ void HardDiskSystem::verify(std::size_t i) const {
   auto check = [&](std::size_t j) {
     if (j == i)
       return;
-    const double dti = time_ - tp_[i], dtj = time_ - tp_[j], acc = p_.gravity;
-    double dx = d_.x[j] + d_.vx[j] * dtj - d_.x[i] - d_.vx[i] * dti;
-    double dy = d_.y[j] + (d_.vy[j] - 0.5 * acc * dtj) * dtj - d_.y[i] - (d_.vy[i] - 0.5 * acc * dti) * dti;
+    const double dti = time_ - h_[i].t, dtj = time_ - h_[j].t, acc = p_.gravity;
+    double dx = h_[j].x + h_[j].vx * dtj - h_[i].x - h_[i].vx * dti;
+    double dy = h_[j].y + (h_[j].vy - 0.5 * acc * dtj) * dtj - h_[i].y - (h_[i].vy - 0.5 * acc * dti) * dti;
     if (p_.periodicX)
       dx -= p_.width * std::round(dx / p_.width);
     if (p_.periodicY)
       dy -= p_.height * std::round(dy / p_.height);
-    const double sigma = (d_.radius[i] + d_.radius[j]) * g;
+    const double sigma = (h_[i].r + h_[j].r) * g;
     if (std::sqrt(dx * dx + dy * dy) < sigma * (1.0 - 1e-9)) {
       std::ostringstream msg;
       msg << describeDisk(d_, i) << " overlaps " << describeDisk(d_, j) << " at t = " << time_;
@@ -557,16 +575,16 @@ void HardDiskSystem::verify(std::size_t i) const {
   const long cx = static_cast<long>(cellOf_[i] % nx_), cy = static_cast<long>(cellOf_[i] / nx_);
   forAxisCells(cy, reach_[i], static_cast<long>(ny_), p_.periodicY, [&](long ky) {
     forAxisCells(cx, reach_[i], static_cast<long>(nx_), p_.periodicX, [&](long kx) {
-      for (std::int64_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
-           k = nextInCell_[static_cast<std::size_t>(k)])
+      for (std::int32_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
+           k = h_[static_cast<std::size_t>(k)].next)
         check(static_cast<std::size_t>(k));
     });
   });
   for (std::uint32_t b : bigs_)
     check(b);
   // Inside the box along walled axes.
-  const double r = d_.radius[i] * g, dti = time_ - tp_[i];
-  const double x = d_.x[i] + d_.vx[i] * dti, y = d_.y[i] + (d_.vy[i] - 0.5 * p_.gravity * dti) * dti;
+  const double r = h_[i].r * g, dti = time_ - h_[i].t;
+  const double x = h_[i].x + h_[i].vx * dti, y = h_[i].y + (h_[i].vy - 0.5 * p_.gravity * dti) * dti;
   const double tol = 1e-9 * r;
   if ((!p_.periodicX && (x < r - tol || x > p_.width - r + tol)) ||
       (!p_.periodicY && (y < r - tol || y > p_.height - r + tol))) {
@@ -607,8 +625,8 @@ double HardDiskSystem::processEvents(std::uint64_t n) {
 double HardDiskSystem::kineticEnergy() const {
   double e = 0.0;
   for (std::size_t i = 0; i < d_.size(); ++i) {
-    const double vy = d_.vy[i] - p_.gravity * (time_ - tp_[i]);
-    e += 0.5 * d_.mass[i] * (d_.vx[i] * d_.vx[i] + vy * vy);
+    const double vy = h_[i].vy - p_.gravity * (time_ - h_[i].t);
+    e += 0.5 * h_[i].m * (h_[i].vx * h_[i].vx + vy * vy);
   }
   return e;
 }
@@ -616,8 +634,8 @@ double HardDiskSystem::kineticEnergy() const {
 void HardDiskSystem::momentum(double& px, double& py) const {
   px = py = 0.0;
   for (std::size_t i = 0; i < d_.size(); ++i) {
-    px += d_.mass[i] * d_.vx[i];
-    py += d_.mass[i] * (d_.vy[i] - p_.gravity * (time_ - tp_[i]));
+    px += h_[i].m * h_[i].vx;
+    py += h_[i].m * (h_[i].vy - p_.gravity * (time_ - h_[i].t));
   }
 }
 
@@ -639,9 +657,9 @@ void HardDiskSystem::trackDisturbance(int sourceMaterial) {
 void HardDiskSystem::scaleVelocities(double factor) {
   for (std::size_t i = 0; i < d_.size(); ++i) {
     stream(i);
-    d_.vx[i] *= factor;
-    d_.vy[i] *= factor;
-    ++count_[i];
+    h_[i].vx *= factor;
+    h_[i].vy *= factor;
+    ++h_[i].count;
   }
   predictAll();
 }

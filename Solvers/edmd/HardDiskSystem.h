@@ -76,7 +76,7 @@ public:
 
   double time() const { return time_; }
   // Disks at the current time (after advanceTo every disk is current).
-  const HardDisks& disks() const { return d_; }
+  const HardDisks& disks() const;
   const HardDiskParams& params() const { return p_; }
   double radiusAt(std::size_t i) const { return d_.radius[i] * growth(time_); }
 
@@ -113,7 +113,7 @@ private:
     double t;
     std::uint32_t partner;
     EventType type;
-    std::uint64_t partnerCount;
+    std::uint32_t partnerCount;
   };
   double growth(double t) const { return 1.0 + p_.growthRate * t; }
   void stream(std::size_t i);
@@ -133,21 +133,32 @@ private:
   void predictAll();
   double exitTime(double pos, double vel, double acc, double lo, double hi, int& side) const;
 
-  HardDisks d_;
+  // What the event loop touches for a disk, in one cache line.
+  struct Hot {
+    double x, y, vx, vy;
+    double t;            // time of the last update
+    double r, m;
+    std::uint32_t count; // collisions so far (events record the partner's)
+    std::int32_t next;   // next disk in the same cell, -1 at the end
+  };
+  std::vector<Hot> h_;
+  mutable HardDisks d_; // ids and materials; positions and velocities copied out by disks()
   HardDiskParams p_;
   double time_ = 0.0;
-  std::vector<double> tp_;            // time of each disk's last update
-  std::vector<std::uint64_t> count_;  // collisions of each disk
   std::vector<double> lastCollision_; // for the TC model
   std::vector<Event> next_;
-  // Complete binary tree of next-event times: leaves at leaf0_ + i, inner nodes hold the index
-  // of the earliest disk below them.
+  // Complete binary tree of next-event times: leaves at leaf0_ + i, inner nodes hold the time
+  // and index of the earliest disk below them (times inline: siblings share a cache line).
+  struct Node {
+    double t;
+    std::uint32_t disk;
+  };
   std::size_t leaf0_ = 1;
-  std::vector<std::uint32_t> tree_;
+  std::vector<Node> tree_;
   // Cell grid with intrusive doubly linked lists.
   std::size_t nx_ = 1, ny_ = 1;
   double cellW_ = 1.0, cellH_ = 1.0;
-  std::vector<std::int64_t> head_, nextInCell_, prevInCell_;
+  std::vector<std::int32_t> head_, prevInCell_;
   std::vector<std::uint32_t> cellOf_;
   std::vector<std::uint32_t> bigs_;
   std::vector<char> isBig_;

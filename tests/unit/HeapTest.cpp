@@ -24,13 +24,13 @@ TEST(HeapAngle, AngleGrowsWithSlidingAndRollingFriction) {
   ContactParams lowRolling;
   lowRolling.muR = 0.3;
   lowRolling.muT = 0.375;
-  ContactParams noRolling;
-  noRolling.muR = 0.0;
-  noRolling.muT = 0.0;
+  ContactParams littleRolling; // (none at all: the column flows off a base this small)
+  littleRolling.muR = 0.1;
+  littleRolling.muT = 0.1;
   const double sliding = runFixedBaseHeap(lowSliding, base).coneDegrees;
   const double rolling = runFixedBaseHeap(lowRolling, base).coneDegrees;
-  const double none = runFixedBaseHeap(noRolling, base).coneDegrees;
+  const double little = runFixedBaseHeap(littleRolling, base).coneDegrees;
   EXPECT_GT(reference.coneDegrees, sliding + 3.0);
   EXPECT_GT(reference.coneDegrees, rolling + 3.0);
-  EXPECT_GT(rolling, none + 1.0);
+  EXPECT_GT(rolling, little + 3.0);
 }
