@@ -111,6 +111,9 @@ struct Hertz {
 
 // Rotates history vectors with the contact frame (PHYSICS.md §1.3 (a)-(b)); inline: it runs
 // for every contact at every step.
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
 inline void carryContactFrame(ContactHistory& h, const Eigen::Vector3d& n, const Eigen::Vector3d& omegaSum,
                        double dt) {
   const Eigen::Vector3d nOld(h.normal[0], h.normal[1], h.normal[2]);
@@ -155,7 +158,10 @@ struct FrictionConstants {
 
 // One contact: normal law + SSDEM tangential, rolling and twisting resistance.
 template <class Normal>
-ContactResult ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants& fc,
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+inline ContactResult ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants& fc,
                            const ContactState& c, ContactHistory& h, double dt) {
   const double kT = fc.kT;
   ContactResult out;

@@ -444,8 +444,13 @@ template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const
     const double d2 = rho.squaredNorm(), sum = r[i] + r[j];
     if (d2 >= sum * sum || d2 == 0.0) {
       if (pairActive_[k]) {
+        // Separated: clear the history and leave zeros for the gather, which sums every
+        // pair without a branch.
         pairActive_[k] = 0;
         pairHistory_[k].clear();
+        put(pairForce_, k, Vec::Zero());
+        put(pairTorqueI_, k, Vec::Zero());
+        put(pairTorqueJ_, k, Vec::Zero());
       }
       continue;
     }
@@ -474,17 +479,15 @@ template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const
 #pragma omp parallel for schedule(static) reduction(max : worst) if (n_ >= kParallelMin)
   for (std::size_t i = 0; i < n_; ++i) {
     Vec f = Vec::Zero(), t = Vec::Zero();
-    for (std::size_t k = firstStart_[i]; k < firstStart_[i + 1]; ++k)
-      if (pairActive_[k]) {
-        f += at(pairForce_, k);
-        t += at(pairTorqueI_, k);
-      }
+    // Inactive pairs hold zeros (set when they separate, or at the list build).
+    for (std::size_t k = firstStart_[i]; k < firstStart_[i + 1]; ++k) {
+      f += at(pairForce_, k);
+      t += at(pairTorqueI_, k);
+    }
     for (std::size_t q = secondStart_[i]; q < secondStart_[i + 1]; ++q) {
       const std::size_t k = secondPair_[q];
-      if (pairActive_[k]) {
-        f -= at(pairForce_, k);
-        t += at(pairTorqueJ_, k);
-      }
+      f -= at(pairForce_, k);
+      t += at(pairTorqueJ_, k);
     }
     for (std::uint64_t near = wallNear_[i]; near != 0; near &= near - 1) {
       const std::size_t w = static_cast<std::size_t>(__builtin_ctzll(near));
