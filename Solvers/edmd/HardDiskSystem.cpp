@@ -150,14 +150,15 @@ HardDiskSystem::HardDiskSystem(const HardDisks& disks, const HardDiskParams& par
 
   head_.assign(nx_ * ny_, -1);
   prevInCell_.assign(n, -1);
-  cellOf_.assign(n, 0);
+  cellOf_.assign(n, CellXY{0, 0});
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t cx = std::min(nx_ - 1, static_cast<std::size_t>(h_[i].x / cellW_));
     const std::size_t cy = std::min(ny_ - 1, static_cast<std::size_t>(h_[i].y / cellH_));
-    insertInCell(i, cy * nx_ + cx);
+    insertInCell(i, cx, cy);
   }
   lastCollision_.assign(n, -kInf);
   next_.assign(n + 1, Event{kInf, 0, EventType::None, 0});
+  pairBest_.assign(n, Event{kInf, 0, EventType::None, 0});
   while (leaf0_ < n)
     leaf0_ *= 2;
   tree_.assign(2 * leaf0_, Node{kInf, static_cast<std::uint32_t>(n)});
@@ -211,7 +212,7 @@ double HardDiskSystem::smallestGapNearby() const {
     best = std::min(best, std::sqrt(dx * dx + dy * dy) - (h_[i].r + h_[j].r) * g);
   };
   for (std::size_t i = 0; i < d_.size(); ++i) {
-    const long cx = static_cast<long>(cellOf_[i] % nx_), cy = static_cast<long>(cellOf_[i] / nx_);
+    const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
     forAxisCells(cy, reach_[i], static_cast<long>(ny_), p_.periodicY, [&](long ky) {
       forAxisCells(cx, reach_[i], static_cast<long>(nx_), p_.periodicX, [&](long kx) {
         for (std::int32_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
@@ -227,8 +228,9 @@ double HardDiskSystem::smallestGapNearby() const {
   return best;
 }
 
-void HardDiskSystem::insertInCell(std::size_t i, std::size_t cell) {
-  cellOf_[i] = static_cast<std::uint32_t>(cell);
+void HardDiskSystem::insertInCell(std::size_t i, std::size_t cx, std::size_t cy) {
+  cellOf_[i] = CellXY{static_cast<std::uint32_t>(cx), static_cast<std::uint32_t>(cy)};
+  const std::size_t cell = cy * nx_ + cx;
   prevInCell_[i] = -1;
   h_[i].next = head_[cell];
   if (head_[cell] >= 0)
@@ -241,7 +243,7 @@ void HardDiskSystem::removeFromCell(std::size_t i) {
   if (prev >= 0)
     h_[static_cast<std::size_t>(prev)].next = next;
   else
-    head_[cellOf_[i]] = next;
+    head_[static_cast<std::size_t>(cellOf_[i].y) * nx_ + cellOf_[i].x] = next;
   if (next >= 0)
     prevInCell_[static_cast<std::size_t>(next)] = prev;
 }
@@ -297,7 +299,7 @@ double HardDiskSystem::exitTime(double pos, double vel, double acc, double lo, d
 }
 
 void HardDiskSystem::cellEvent(std::size_t i, Event& best) const {
-  const std::size_t cx = cellOf_[i] % nx_, cy = cellOf_[i] / nx_;
+  const std::size_t cx = cellOf_[i].x, cy = cellOf_[i].y;
   const double xlo = (cx == 0 && !p_.periodicX) ? -kInf : cx * cellW_;
   const double xhi = (cx + 1 == nx_ && !p_.periodicX) ? kInf : (cx + 1) * cellW_;
   const double ylo = (cy == 0 && !p_.periodicY) ? -kInf : cy * cellH_;
@@ -374,24 +376,120 @@ void HardDiskSystem::consider(std::size_t i, std::size_t j, Event& best) const {
 }
 
 void HardDiskSystem::predict(std::size_t i) {
-  Event best{kInf, 0, EventType::None, 0};
-  cellEvent(i, best);
-  wallEvent(i, best);
-  const long cx = static_cast<long>(cellOf_[i] % nx_), cy = static_cast<long>(cellOf_[i] / nx_);
+  Event best{kInf, 0, EventType::None, 0}; // the best pair event
+  const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
   const long reach = reach_[i];
-  forAxisCells(cy, reach, static_cast<long>(ny_), p_.periodicY, [&](long ky) {
-    forAxisCells(cx, reach, static_cast<long>(nx_), p_.periodicX, [&](long kx) {
-      for (std::int32_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
-           k = h_[static_cast<std::size_t>(k)].next) {
-        const std::size_t j = static_cast<std::size_t>(k);
-        if (j != i && !isBig_[j])
-          consider(i, j, best);
+  const long nx = static_cast<long>(nx_), ny = static_cast<long>(ny_);
+  if (reach == 1 && nx >= 3 && ny >= 3 && p_.growthRate == 0.0) {
+    // The common case, written out: a small disk, the 3x3 cells around it, no growth.
+    const Hot& a = h_[i];
+    const double g = p_.gravity, now = time_, W = p_.width, H = p_.height;
+    const bool px = p_.periodicX, py = p_.periodicY;
+    for (long dy = -1; dy <= 1; ++dy) {
+      long ky = cy + dy;
+      if (ky < 0 || ky >= ny) {
+        if (!py)
+          continue;
+        ky = ky < 0 ? ny - 1 : 0;
       }
+      for (long dx = -1; dx <= 1; ++dx) {
+        long kx = cx + dx;
+        if (kx < 0 || kx >= nx) {
+          if (!px)
+            continue;
+          kx = kx < 0 ? nx - 1 : 0;
+        }
+        for (std::int32_t k = head_[static_cast<std::size_t>(ky * nx + kx)]; k >= 0;) {
+          const std::size_t j = static_cast<std::size_t>(k);
+          const Hot& o = h_[j];
+          k = o.next;
+          if (j == i || isBig_[j])
+            continue;
+          const double dtj = now - o.t;
+          const double vyj = o.vy - g * dtj;
+          const double ux = o.vx - a.vx, uy = vyj - a.vy;
+          double rx = o.x + o.vx * dtj - a.x;
+          double ry = o.y + (o.vy - 0.5 * g * dtj) * dtj - a.y;
+          if (px)
+            rx = minimumImage(rx, W);
+          if (py)
+            ry = minimumImage(ry, H);
+          const double b = rx * ux + ry * uy;
+          if (b >= 0.0)
+            continue; // receding (a >= 0 without growth)
+          const double sigma = a.r + o.r;
+          const double c = rx * rx + ry * ry - sigma * sigma;
+          double tau = 0.0;
+          if (c > 0.0) {
+            const double uu = ux * ux + uy * uy, disc = b * b - uu * c;
+            if (disc < 0.0)
+              continue;
+            tau = c / (-b + std::sqrt(disc));
+          }
+          if (now + tau < best.t)
+            best = Event{now + tau, static_cast<std::uint32_t>(j), EventType::Pair, o.count};
+        }
+      }
+    }
+  } else {
+    forAxisCells(cy, reach, ny, p_.periodicY, [&](long ky) {
+      forAxisCells(cx, reach, nx, p_.periodicX, [&](long kx) {
+        for (std::int32_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
+             k = h_[static_cast<std::size_t>(k)].next) {
+          const std::size_t j = static_cast<std::size_t>(k);
+          if (j != i && !isBig_[j])
+            consider(i, j, best);
+        }
+      });
     });
-  });
+  }
   for (std::uint32_t b : bigs_)
     if (b != i)
       consider(i, b, best);
+  pairBest_[i] = best;
+  cellEvent(i, best);
+  wallEvent(i, best);
+  next_[i] = best;
+  updateTree(i);
+}
+
+void HardDiskSystem::predictAfterCrossing(std::size_t i, std::uint32_t direction) {
+  // The pair events with the old neighbours cannot come before the crossing and do not change
+  // with it: keep the best of them (if its partner has not collided since) and scan only the
+  // row or column of cells that just came within reach.
+  Event best = pairBest_[i];
+  const bool fast = reach_[i] == 1 && nx_ >= 3 && ny_ >= 3 && p_.growthRate == 0.0;
+  if (!fast || (best.type == EventType::Pair && h_[best.partner].count != best.partnerCount)) {
+    predict(i);
+    return;
+  }
+  const long nx = static_cast<long>(nx_), ny = static_cast<long>(ny_);
+  const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
+  auto scan = [&](long kx, long ky) {
+    if (kx < 0 || kx >= nx) {
+      if (!p_.periodicX)
+        return;
+      kx = kx < 0 ? nx - 1 : 0;
+    }
+    if (ky < 0 || ky >= ny) {
+      if (!p_.periodicY)
+        return;
+      ky = ky < 0 ? ny - 1 : 0;
+    }
+    for (std::int32_t k = head_[static_cast<std::size_t>(ky * nx + kx)]; k >= 0; k = h_[static_cast<std::size_t>(k)].next)
+      if (static_cast<std::size_t>(k) != i && !isBig_[static_cast<std::size_t>(k)])
+        consider(i, static_cast<std::size_t>(k), best);
+  };
+  const long step = (direction % 2 == 0) ? -1 : 1;
+  for (long d = -1; d <= 1; ++d) {
+    if (direction < 2)
+      scan(cx + step, cy + d);
+    else
+      scan(cx + d, cy + step);
+  }
+  pairBest_[i] = best;
+  cellEvent(i, best);
+  wallEvent(i, best);
   next_[i] = best;
   updateTree(i);
 }
@@ -485,7 +583,7 @@ void HardDiskSystem::hitWall(std::size_t i, std::uint32_t wall) {
 
 void HardDiskSystem::crossCell(std::size_t i, std::uint32_t direction) {
   stream(i);
-  long cx = static_cast<long>(cellOf_[i] % nx_), cy = static_cast<long>(cellOf_[i] / nx_);
+  long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
   switch (direction) {
   case 0:
     if (--cx < 0) {
@@ -513,11 +611,11 @@ void HardDiskSystem::crossCell(std::size_t i, std::uint32_t direction) {
     break;
   }
   removeFromCell(i);
-  insertInCell(i, static_cast<std::size_t>(cy) * nx_ + static_cast<std::size_t>(cx));
+  insertInCell(i, static_cast<std::size_t>(cx), static_cast<std::size_t>(cy));
   ++cellCrossings_;
   if (log_)
     log_->push_back(EventRecord{time_, EventType::Cell, static_cast<std::uint32_t>(i), direction});
-  predict(i);
+  predictAfterCrossing(i, direction);
 }
 
 bool HardDiskSystem::step(double limit) {
@@ -572,7 +670,7 @@ void HardDiskSystem::verify(std::size_t i) const {
       throw std::logic_error(msg.str());
     }
   };
-  const long cx = static_cast<long>(cellOf_[i] % nx_), cy = static_cast<long>(cellOf_[i] / nx_);
+  const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
   forAxisCells(cy, reach_[i], static_cast<long>(ny_), p_.periodicY, [&](long ky) {
     forAxisCells(cx, reach_[i], static_cast<long>(nx_), p_.periodicX, [&](long kx) {
       for (std::int32_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;

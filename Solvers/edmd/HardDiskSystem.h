@@ -118,6 +118,7 @@ private:
   double growth(double t) const { return 1.0 + p_.growthRate * t; }
   void stream(std::size_t i);
   void predict(std::size_t i);
+  void predictAfterCrossing(std::size_t i, std::uint32_t direction);
   void consider(std::size_t i, std::size_t j, Event& best) const;
   void wallEvent(std::size_t i, Event& best) const;
   void cellEvent(std::size_t i, Event& best) const;
@@ -127,7 +128,7 @@ private:
   bool step(double limit); // one event before limit; false if none
   void verify(std::size_t i) const;
   bool checkOverlaps_ = false;
-  void insertInCell(std::size_t i, std::size_t cell);
+  void insertInCell(std::size_t i, std::size_t cx, std::size_t cy);
   void removeFromCell(std::size_t i);
   void updateTree(std::size_t i);
   void predictAll();
@@ -147,6 +148,7 @@ private:
   double time_ = 0.0;
   std::vector<double> lastCollision_; // for the TC model
   std::vector<Event> next_;
+  std::vector<Event> pairBest_; // best pair event of each disk's last scan
   // Complete binary tree of next-event times: leaves at leaf0_ + i, inner nodes hold the time
   // and index of the earliest disk below them (times inline: siblings share a cache line).
   struct Node {
@@ -159,7 +161,10 @@ private:
   std::size_t nx_ = 1, ny_ = 1;
   double cellW_ = 1.0, cellH_ = 1.0;
   std::vector<std::int32_t> head_, prevInCell_;
-  std::vector<std::uint32_t> cellOf_;
+  struct CellXY {
+    std::uint32_t x, y;
+  };
+  std::vector<CellXY> cellOf_;
   std::vector<std::uint32_t> bigs_;
   std::vector<char> isBig_;
   std::vector<int> reach_; // rings of cells a disk scans (1 for small disks)
