@@ -159,9 +159,6 @@ HardDiskSystem::HardDiskSystem(const HardDisks& disks, const HardDiskParams& par
   lastCollision_.assign(n, -kInf);
   next_.assign(n + 1, Event{kInf, 0, EventType::None, 0});
   pairBest_.assign(n, Event{kInf, 0, EventType::None, 0});
-  while (leaf0_ < n)
-    leaf0_ *= 2;
-  tree_.assign(2 * leaf0_, Node{kInf, static_cast<std::uint32_t>(n)});
 
   // Overlapping input is an error: the dynamics of hard disks is undefined for it.
   const double gap = smallestGapNearby();
@@ -494,32 +491,19 @@ void HardDiskSystem::predictAfterCrossing(std::size_t i, std::uint32_t direction
   updateTree(i);
 }
 
-void HardDiskSystem::updateTree(std::size_t i) {
-  std::size_t pos = leaf0_ + i;
-  Node* tree = tree_.data();
-  tree[pos] = Node{next_[i].t, static_cast<std::uint32_t>(i)};
-  while (pos > 1) {
-    pos >>= 1;
-    const Node& a = tree[2 * pos];
-    const Node& b = tree[2 * pos + 1];
-    const Node& winner = a.t <= b.t ? a : b;
-    if (tree[pos].disk == winner.disk && winner.disk != i)
-      break; // the same disk with the same time: nothing above can change
-    tree[pos] = winner;
-  }
-}
+void HardDiskSystem::updateTree(std::size_t i) { queue_.update(i, next_[i].t); }
 
 void HardDiskSystem::predictAll() {
-  const std::size_t n = d_.size();
+  const std::size_t n = h_.size();
   for (std::size_t i = 0; i < n; ++i)
     stream(i);
+  std::vector<double> times(n, kInf);
+  queue_.reset(n, times.data(), time_);
   for (std::size_t i = 0; i < n; ++i)
-    predict(i); // the tree is rebuilt below
-  std::fill(tree_.begin(), tree_.end(), Node{kInf, static_cast<std::uint32_t>(n)});
+    predict(i);
   for (std::size_t i = 0; i < n; ++i)
-    tree_[leaf0_ + i] = Node{next_[i].t, static_cast<std::uint32_t>(i)};
-  for (std::size_t pos = leaf0_ - 1; pos >= 1; --pos)
-    tree_[pos] = tree_[2 * pos].t <= tree_[2 * pos + 1].t ? tree_[2 * pos] : tree_[2 * pos + 1];
+    times[i] = next_[i].t;
+  queue_.reset(n, times.data(), time_); // again, to size the buckets from the real events
 }
 
 void HardDiskSystem::collide(std::size_t i, std::size_t j) {
@@ -619,10 +603,13 @@ void HardDiskSystem::crossCell(std::size_t i, std::uint32_t direction) {
 }
 
 bool HardDiskSystem::step(double limit) {
-  const std::size_t i = tree_[1].disk;
+  const std::size_t i = queue_.top();
+  if (i >= h_.size())
+    return false;
   const Event ev = next_[i];
   if (!(ev.t < limit))
     return false;
+  queue_.countPop();
   time_ = std::max(time_, ev.t);
   switch (ev.type) {
   case EventType::Pair:

@@ -4,9 +4,8 @@
 // gravity along -y) and are advanced lazily: each disk keeps the time of its last update.
 // Events are pair collisions, wall collisions, crossings of a uniform cell grid and the
 // caller's stops (frames). Each disk keeps only its next event, chosen among its partners in
-// the 3x3 cells around it; the disks are the leaves of a complete binary tree whose inner
-// nodes hold the earlier of their children, so the next event of the system is at the root
-// and updating one disk costs log2(N) comparisons. An event with a partner records the
+// the 3x3 cells around it, and the future-event list is a bounded priority queue
+// (EventQueue.h: O(1) scheduling, exact order). An event with a partner records the
 // partner's collision counter; if the partner has collided since, the event is stale and the
 // disk is simply predicted again (Rapaport's scheme; no search, no deletion).
 //
@@ -21,6 +20,7 @@
 #pragma once
 
 #include "common/Progress.h"
+#include "edmd/EventQueue.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -149,14 +149,7 @@ private:
   std::vector<double> lastCollision_; // for the TC model
   std::vector<Event> next_;
   std::vector<Event> pairBest_; // best pair event of each disk's last scan
-  // Complete binary tree of next-event times: leaves at leaf0_ + i, inner nodes hold the time
-  // and index of the earliest disk below them (times inline: siblings share a cache line).
-  struct Node {
-    double t;
-    std::uint32_t disk;
-  };
-  std::size_t leaf0_ = 1;
-  std::vector<Node> tree_;
+  EventQueue queue_; // the future-event list over next_
   // Cell grid with intrusive doubly linked lists.
   std::size_t nx_ = 1, ny_ = 1;
   double cellW_ = 1.0, cellH_ = 1.0;
