@@ -447,7 +447,7 @@ void HardDiskSystem::predict(std::size_t i) {
   cellEvent(i, best);
   wallEvent(i, best);
   next_[i] = best;
-  updateTree(i);
+  schedule(i);
 }
 
 void HardDiskSystem::predictAfterCrossing(std::size_t i, std::uint32_t direction) {
@@ -488,10 +488,10 @@ void HardDiskSystem::predictAfterCrossing(std::size_t i, std::uint32_t direction
   cellEvent(i, best);
   wallEvent(i, best);
   next_[i] = best;
-  updateTree(i);
+  schedule(i);
 }
 
-void HardDiskSystem::updateTree(std::size_t i) { queue_.update(i, next_[i].t); }
+void HardDiskSystem::schedule(std::size_t i) { queue_.update(i, next_[i].t); }
 
 void HardDiskSystem::predictAll() {
   const std::size_t n = h_.size();

@@ -130,7 +130,7 @@ private:
   bool checkOverlaps_ = false;
   void insertInCell(std::size_t i, std::size_t cx, std::size_t cy);
   void removeFromCell(std::size_t i);
-  void updateTree(std::size_t i);
+  void schedule(std::size_t i); // hands next_[i] to the queue
   void predictAll();
   double exitTime(double pos, double vel, double acc, double lo, double hi, int& side) const;
 

@@ -2,6 +2,7 @@
 // state, inelastic bounces, compression and the crater scenario's input checks.
 #include "common/Error.h"
 #include "common/Random.h"
+#include "edmd/EventQueue.h"
 #include "edmd/HardDiskCrater.h"
 #include "edmd/HardDiskSystem.h"
 
@@ -354,4 +355,49 @@ TEST(HardDiskCrater, BadInputGivesClearErrors) {
   overlapping.add(0.55, 0.5, 0, 0, 0.1, 1, 0, 1);
   HardDiskParams hp;
   EXPECT_THROW(HardDiskSystem(overlapping, hp), InputError);
+}
+
+// The future-event queue against a brute-force minimum, through many turns of its ring, with
+// ties, events that disappear, bursts of close events and long gaps (which make it adapt).
+TEST(EventQueue, AlwaysYieldsTheEarliestEventLowestIndexFirst) {
+  const std::size_t n = 500;
+  Random rng(17);
+  std::vector<double> times(n);
+  for (double& t : times)
+    t = rng.uniform(0.0, 1.0);
+  EventQueue q;
+  q.reset(n, times.data(), 0.0);
+  double now = 0.0;
+  int checked = 0;
+  for (int step = 0; step < 200000; ++step) {
+    std::size_t expected = n;
+    for (std::size_t i = 0; i < n; ++i)
+      if (times[i] < kInf && (expected == n || times[i] < times[expected]))
+        expected = i;
+    const std::size_t got = q.top();
+    ASSERT_EQ(got, expected) << "step " << step;
+    if (got == n)
+      break;
+    q.countPop();
+    now = times[got];
+    // The disk's next event: usually soon, sometimes a tie, sometimes far away or none.
+    const double u = rng.uniform();
+    double next = now + rng.uniform(0.0, 0.01);
+    if (u < 0.05)
+      next = now; // a tie with the current time
+    else if (u < 0.07)
+      next = kInf;
+    else if (u < 0.08)
+      next = now + rng.uniform(0.0, 1000.0);
+    else if (step > 100000)
+      next = now + rng.uniform(0.0, 1e-5); // a burst: the ring must narrow
+    times[got] = next;
+    q.update(got, next);
+    // Another disk's event changes too (and disks without one get one back).
+    const std::size_t other = static_cast<std::size_t>(rng.uniform() * n);
+    times[other] = now + rng.uniform(0.0, 0.02);
+    q.update(other, times[other]);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 200000);
 }
