@@ -395,7 +395,10 @@ TEST(EventQueue, AlwaysYieldsTheEarliestEventLowestIndexFirst) {
     q.update(got, next);
     // Another disk's event changes too (and disks without one get one back).
     const std::size_t other = static_cast<std::size_t>(rng.uniform() * n);
+    const std::size_t third = static_cast<std::size_t>(rng.uniform() * n);
     times[other] = now + rng.uniform(0.0, 0.02);
+    if (rng.uniform() < 0.2 && times[third] < kInf)
+      times[other] = times[third]; // an exact tie between two disks
     q.update(other, times[other]);
     ++checked;
   }
