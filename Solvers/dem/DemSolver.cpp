@@ -437,7 +437,7 @@ template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const
   const std::size_t pairs = pairI_.size();
   double worst = 0.0;
 
-#pragma omp parallel for schedule(static) reduction(max : worst) if (n_ >= kParallelMin)
+#pragma omp parallel for schedule(dynamic, 4096) reduction(max : worst) if (n_ >= kParallelMin)
   for (std::size_t k = 0; k < pairs; ++k) {
     const std::size_t i = pairI_[k], j = pairJ_[k];
     const Vec rho(x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]);
@@ -476,7 +476,7 @@ template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const
   }
 
   const std::size_t walls = params_.walls.size();
-#pragma omp parallel for schedule(static) reduction(max : worst) if (n_ >= kParallelMin)
+#pragma omp parallel for schedule(dynamic, 4096) reduction(max : worst) if (n_ >= kParallelMin)
   for (std::size_t i = 0; i < n_; ++i) {
     Vec f = Vec::Zero(), t = Vec::Zero();
     // Inactive pairs hold zeros (set when they separate, or at the list build).
