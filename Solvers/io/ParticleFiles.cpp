@@ -135,7 +135,7 @@ DumpIndexEntry readDumpHeader(Cursor& c, ParticleFrame* frame, std::vector<std::
   DumpIndexEntry e;
   e.offset = c.pos;
   e.line = c.line;
-  bool haveStep = false, haveCount = false;
+  bool haveStep = false, haveCount = false, haveTime = false;
   while (true) {
     const std::size_t lineNo = c.line;
     const std::string_view l = trim(c.next());
@@ -151,6 +151,8 @@ DumpIndexEntry readDumpHeader(Cursor& c, ParticleFrame* frame, std::vector<std::
     } else if (item == "TIME") {
       const std::size_t at = c.line;
       const double t = toDouble(trim(c.next()), c, at, "TIME");
+      e.time = t;
+      haveTime = true;
       if (frame)
         frame->time = t;
     } else if (item == "NUMBER OF ATOMS") {
@@ -177,6 +179,8 @@ DumpIndexEntry readDumpHeader(Cursor& c, ParticleFrame* frame, std::vector<std::
     } else if (startsWith(item, "ATOMS")) {
       if (!haveStep || !haveCount)
         c.fail("ITEM: ATOMS before TIMESTEP and NUMBER OF ATOMS", lineNo);
+      if (!haveTime)
+        e.time = static_cast<double>(e.timestep);
       if (columns) {
         columns->clear();
         std::string_view rest = item.substr(5);

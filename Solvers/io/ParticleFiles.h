@@ -55,6 +55,7 @@ struct DumpIndexEntry {
   std::size_t line = 1;   // line number of that line
   long long timestep = 0;
   std::size_t count = 0;
+  double time = 0.0; // its ITEM: TIME, else the step number
 };
 std::vector<DumpIndexEntry> indexDump(std::string_view text, const std::string& fileName);
 // Parses the snapshot that starts at entry.offset.

@@ -49,7 +49,13 @@ proxies = 0
 bed_for_inputs = None
 for path in xml_files:
     for group in ET.parse(path).getroot().findall("ProxyGroup"):
+        # Readers wrapped in ParaView's file-series reader, their internal core proxies and
+        # the writers need a file to exist: test_particle_files.py covers them.
+        if group.get("name") not in ("sources", "filters"):
+            continue
         for element in group:
+            if element.get("class") == "vtkFileSeriesReader":
+                continue
             name = element.get("name")
             label = element.get("label") or name
             proxies += 1

@@ -1,0 +1,205 @@
+#include "vtkCraterKitParticleReader.h"
+
+#include "vtkCraterKitSolverBridge.h"
+
+#include "dem/DemSolver.h"
+#include "io/ParticleFiles.h"
+
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+vtkStandardNewMacro(vtkCraterKitParticleReader);
+
+struct vtkCraterKitParticleReader::Cache
+{
+  std::string File;
+  int Format = 0;
+  int Units = 1;
+  std::string Bytes;
+  std::vector<craterkit::DumpIndexEntry> Index;
+  std::unique_ptr<craterkit::ParticleFrame> Single;
+  std::vector<double> Times;
+};
+
+namespace
+{
+std::string Lower(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+bool EndsWith(const std::string& s, const std::string& tail)
+{
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+int FormatOf(const std::string& name)
+{
+  std::string n = Lower(name);
+  if (EndsWith(n, ".gz"))
+    n.resize(n.size() - 3);
+  if (EndsWith(n, ".ss"))
+    return vtkCraterKitParticleReader::PKDGRAV_SS;
+  if (EndsWith(n, ".ckdem"))
+    return vtkCraterKitParticleReader::CRATERKIT_CHECKPOINT;
+  const std::string base = n.substr(n.find_last_of('/') == std::string::npos ? 0 : n.find_last_of('/') + 1);
+  if (EndsWith(n, ".dump") || EndsWith(n, ".liggghts") || EndsWith(n, ".lammpstrj") ||
+    base.find("dump") != std::string::npos)
+    return vtkCraterKitParticleReader::LAMMPS_DUMP;
+  return vtkCraterKitParticleReader::AUTOMATIC;
+}
+
+craterkit::ParticleFrame FrameOfCheckpoint(const std::string& path)
+{
+  const craterkit::DemSolver solver = craterkit::DemSolver::readCheckpoint(path);
+  craterkit::ParticleFrame f;
+  f.particles = solver.particles();
+  f.time = solver.time();
+  f.timestep = solver.stepCount();
+  f.hasVelocity = f.hasAngularVelocity = f.hasRadius = f.hasMass = f.hasDensity = f.hasMaterial = f.hasId = true;
+  return f;
+}
+}
+
+vtkCraterKitParticleReader::vtkCraterKitParticleReader()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkCraterKitParticleReader::~vtkCraterKitParticleReader()
+{
+  this->SetFileName(nullptr);
+}
+
+int vtkCraterKitParticleReader::CanReadFile(const char* name)
+{
+  return name && FormatOf(name) != AUTOMATIC ? 1 : 0;
+}
+
+bool vtkCraterKitParticleReader::Load()
+{
+  using namespace craterkit;
+  if (!this->FileName || !*this->FileName)
+    throw InputError("no file name");
+  const std::string file = this->FileName;
+  const int format = this->Format != AUTOMATIC ? this->Format : FormatOf(file);
+  if (this->Loaded && this->Loaded->File == file && this->Loaded->Format == format &&
+    this->Loaded->Units == this->PkdgravUnits)
+    return true;
+  this->Loaded.reset();
+  auto cache = std::make_unique<Cache>();
+  cache->File = file;
+  cache->Format = format;
+  cache->Units = this->PkdgravUnits;
+  switch (format)
+  {
+    case LAMMPS_DUMP:
+      cache->Bytes = readFileBytes(file);
+      cache->Index = indexDump(cache->Bytes, file);
+      for (const DumpIndexEntry& e : cache->Index)
+        cache->Times.push_back(e.time);
+      break;
+    case PKDGRAV_SS:
+      cache->Single = std::make_unique<ParticleFrame>(parseSs(readFileBytes(file), file, this->PkdgravUnits != 0));
+      cache->Times.push_back(cache->Single->time);
+      break;
+    case CRATERKIT_CHECKPOINT:
+      cache->Single = std::make_unique<ParticleFrame>(FrameOfCheckpoint(file));
+      cache->Times.push_back(cache->Single->time);
+      break;
+    default:
+      throw InputError(file + ": unknown particle format (extensions: .dump, .liggghts, .lammpstrj, .ss, .ckdem, optionally .gz); set Format");
+  }
+  // Time steps must increase; a dump whose snapshots do not gets their indices instead.
+  for (std::size_t k = 1; k < cache->Times.size(); ++k)
+    if (!(cache->Times[k] > cache->Times[k - 1]))
+    {
+      vtkWarningMacro(<< file << ": snapshot times do not increase; using snapshot numbers as times");
+      for (std::size_t j = 0; j < cache->Times.size(); ++j)
+        cache->Times[j] = static_cast<double>(j);
+      break;
+    }
+  this->Loaded = std::move(cache);
+  return true;
+}
+
+int vtkCraterKitParticleReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  if (!craterkit::bridge::run(this, [&] { this->Load(); }))
+    return 0;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const std::vector<double>& times = this->Loaded->Times;
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+  const double range[2] = { times.front(), times.back() };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  return 1;
+}
+
+int vtkCraterKitParticleReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  using namespace craterkit;
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  ParticleFrame frame;
+  std::size_t snapshot = 0;
+  const bool ok = bridge::run(this, [&] {
+    this->Load();
+    const std::vector<double>& times = this->Loaded->Times;
+    if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+    {
+      const double t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+      // The last snapshot at or before t.
+      const auto it = std::upper_bound(times.begin(), times.end(), t + 1e-12 * std::abs(t));
+      snapshot = it == times.begin() ? 0 : static_cast<std::size_t>(it - times.begin()) - 1;
+    }
+    if (this->Loaded->Single)
+      frame = *this->Loaded->Single;
+    else
+      frame = parseDumpSnapshot(this->Loaded->Bytes, this->Loaded->Index[snapshot], this->Loaded->File);
+  });
+  if (!ok)
+    return 0;
+
+  bridge::toPolyData(frame.particles, output);
+  vtkPointData* pd = output->GetPointData();
+  if (!frame.hasVelocity)
+    pd->RemoveArray("Velocity");
+  if (!frame.hasAngularVelocity)
+    pd->RemoveArray("AngularVelocity");
+  if (!frame.hasRadius)
+    pd->RemoveArray("Radius");
+  if (!frame.hasMass)
+    pd->RemoveArray("Mass");
+  if (!frame.hasDensity)
+    pd->RemoveArray("Density");
+  for (const ExtraArray& x : frame.extra)
+    if (!pd->HasArray(x.name.c_str()))
+      pd->AddArray(bridge::doubleArray(x.name.c_str(), x.components, x.values));
+  if (pd->HasArray("Radius"))
+    pd->SetActiveScalars("Radius");
+  vtkFieldData* fd = output->GetFieldData();
+  bridge::addField(fd, "Time", frame.time);
+  bridge::addField(fd, "TimeStep", static_cast<double>(frame.timestep));
+  bridge::addField(fd, "Snapshot", static_cast<double>(snapshot));
+  if (frame.hasBox)
+    bridge::addField(fd, "BoxBounds", frame.box, 6);
+  output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), this->Loaded->Times[snapshot]);
+  return 1;
+}
+
+void vtkCraterKitParticleReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "Format: " << this->Format << "\n";
+  os << indent << "PkdgravUnits: " << this->PkdgravUnits << "\n";
+}
