@@ -305,52 +305,81 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
   s.density.assign(n, 0.0);
   s.material.assign(n, 0);
   s.id.resize(n);
-  std::vector<std::string_view> tok(ncol + 1);
+  // Line starts first (one fast pass), then the rows in parallel; the first bad row (lowest
+  // line) is the one reported, whatever the thread count.
+  std::vector<std::size_t> start(n + 1);
+  const std::size_t firstLine = c.line;
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t at = c.line;
     if (c.atEnd())
       c.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(n) + " atoms");
-    const std::string_view l = c.next();
-    const std::size_t got = split(l, tok.data(), tok.size());
-    if (got != ncol)
-      c.fail("expected " + std::to_string(ncol) + " values, found " + std::to_string(got), at);
-    s.id[i] = static_cast<std::int64_t>(i + 1);
-    for (std::size_t k = 0; k < ncol; ++k) {
-      switch (kind[k]) {
-      case Col::Id:
-        s.id[i] = toInteger(tok[k], c, at, "id");
-        break;
-      case Col::Type: {
-        const long long t = toInteger(tok[k], c, at, "type");
-        if (t < 1 || t > std::numeric_limits<int>::max())
-          c.fail("atom type " + std::to_string(t) + " out of range", at);
-        s.material[i] = static_cast<int>(t - 1);
-        break;
-      }
-      case Col::X: s.position[3 * i] = toDouble(tok[k], c, at, "x"); break;
-      case Col::Y: s.position[3 * i + 1] = toDouble(tok[k], c, at, "y"); break;
-      case Col::Z: s.position[3 * i + 2] = toDouble(tok[k], c, at, "z"); break;
-      case Col::Xs: s.position[3 * i] = f.box[0] + toDouble(tok[k], c, at, "xs") * (f.box[1] - f.box[0]); break;
-      case Col::Ys: s.position[3 * i + 1] = f.box[2] + toDouble(tok[k], c, at, "ys") * (f.box[3] - f.box[2]); break;
-      case Col::Zs: s.position[3 * i + 2] = f.box[4] + toDouble(tok[k], c, at, "zs") * (f.box[5] - f.box[4]); break;
-      case Col::Vx: s.velocity[3 * i] = toDouble(tok[k], c, at, "vx"); break;
-      case Col::Vy: s.velocity[3 * i + 1] = toDouble(tok[k], c, at, "vy"); break;
-      case Col::Vz: s.velocity[3 * i + 2] = toDouble(tok[k], c, at, "vz"); break;
-      case Col::Wx: s.angularVelocity[3 * i] = toDouble(tok[k], c, at, "omegax"); break;
-      case Col::Wy: s.angularVelocity[3 * i + 1] = toDouble(tok[k], c, at, "omegay"); break;
-      case Col::Wz: s.angularVelocity[3 * i + 2] = toDouble(tok[k], c, at, "omegaz"); break;
-      case Col::Radius: s.radius[i] = toDouble(tok[k], c, at, "radius"); break;
-      case Col::Diameter: s.radius[i] = 0.5 * toDouble(tok[k], c, at, "diameter"); break;
-      case Col::Mass: s.mass[i] = toDouble(tok[k], c, at, "mass"); break;
-      case Col::Density: s.density[i] = toDouble(tok[k], c, at, "density"); break;
-      case Col::Extra: {
-        ExtraArray& x = f.extra[static_cast<std::size_t>(extraIndex[k])];
-        x.values[i * x.components + extraComp[k]] = toDouble(tok[k], c, at, names[k].c_str());
-        break;
-      }
+    start[i] = c.pos;
+    const std::size_t end = text.find('\n', c.pos);
+    c.pos = end == std::string_view::npos ? text.size() : end + 1;
+    ++c.line;
+  }
+  start[n] = c.pos;
+  std::size_t badRow = n;
+  std::string badMessage;
+#pragma omp parallel if (n >= 20000)
+  {
+    std::vector<std::string_view> tok(ncol + 1);
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t at = firstLine + i;
+      try {
+        std::string_view l = text.substr(start[i], start[i + 1] - start[i]);
+        while (!l.empty() && (l.back() == '\n' || l.back() == '\r'))
+          l.remove_suffix(1);
+        const std::size_t got = split(l, tok.data(), tok.size());
+        if (got != ncol)
+          c.fail("expected " + std::to_string(ncol) + " values, found " + std::to_string(got), at);
+        s.id[i] = static_cast<std::int64_t>(i + 1);
+        for (std::size_t k = 0; k < ncol; ++k) {
+          switch (kind[k]) {
+          case Col::Id:
+            s.id[i] = toInteger(tok[k], c, at, "id");
+            break;
+          case Col::Type: {
+            const long long t = toInteger(tok[k], c, at, "type");
+            if (t < 1 || t > std::numeric_limits<int>::max())
+              c.fail("atom type " + std::to_string(t) + " out of range", at);
+            s.material[i] = static_cast<int>(t - 1);
+            break;
+          }
+          case Col::X: s.position[3 * i] = toDouble(tok[k], c, at, "x"); break;
+          case Col::Y: s.position[3 * i + 1] = toDouble(tok[k], c, at, "y"); break;
+          case Col::Z: s.position[3 * i + 2] = toDouble(tok[k], c, at, "z"); break;
+          case Col::Xs: s.position[3 * i] = f.box[0] + toDouble(tok[k], c, at, "xs") * (f.box[1] - f.box[0]); break;
+          case Col::Ys: s.position[3 * i + 1] = f.box[2] + toDouble(tok[k], c, at, "ys") * (f.box[3] - f.box[2]); break;
+          case Col::Zs: s.position[3 * i + 2] = f.box[4] + toDouble(tok[k], c, at, "zs") * (f.box[5] - f.box[4]); break;
+          case Col::Vx: s.velocity[3 * i] = toDouble(tok[k], c, at, "vx"); break;
+          case Col::Vy: s.velocity[3 * i + 1] = toDouble(tok[k], c, at, "vy"); break;
+          case Col::Vz: s.velocity[3 * i + 2] = toDouble(tok[k], c, at, "vz"); break;
+          case Col::Wx: s.angularVelocity[3 * i] = toDouble(tok[k], c, at, "omegax"); break;
+          case Col::Wy: s.angularVelocity[3 * i + 1] = toDouble(tok[k], c, at, "omegay"); break;
+          case Col::Wz: s.angularVelocity[3 * i + 2] = toDouble(tok[k], c, at, "omegaz"); break;
+          case Col::Radius: s.radius[i] = toDouble(tok[k], c, at, "radius"); break;
+          case Col::Diameter: s.radius[i] = 0.5 * toDouble(tok[k], c, at, "diameter"); break;
+          case Col::Mass: s.mass[i] = toDouble(tok[k], c, at, "mass"); break;
+          case Col::Density: s.density[i] = toDouble(tok[k], c, at, "density"); break;
+          case Col::Extra: {
+            ExtraArray& x = f.extra[static_cast<std::size_t>(extraIndex[k])];
+            x.values[i * x.components + extraComp[k]] = toDouble(tok[k], c, at, names[k].c_str());
+            break;
+          }
+          }
+        }
+      } catch (const ParseError& e) {
+#pragma omp critical(craterkit_dump_error)
+        if (i < badRow) {
+          badRow = i;
+          badMessage = e.what();
+        }
       }
     }
   }
+  if (badRow < n)
+    throw ParseError(badMessage);
   f.hasVelocity = has[static_cast<int>(Col::Vx)] || has[static_cast<int>(Col::Vy)] || has[static_cast<int>(Col::Vz)];
   f.hasAngularVelocity = has[static_cast<int>(Col::Wx)] || has[static_cast<int>(Col::Wy)] || has[static_cast<int>(Col::Wz)];
   f.hasRadius = has[static_cast<int>(Col::Radius)] || has[static_cast<int>(Col::Diameter)];
@@ -446,14 +475,16 @@ double PkdgravUnits::time() {
 }
 
 namespace {
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the .ss byte swapping assumes a little-endian host");
 std::uint64_t loadBE64(const unsigned char* p) {
-  std::uint64_t v = 0;
-  for (int k = 0; k < 8; ++k)
-    v = (v << 8) | p[k];
-  return v;
+  std::uint64_t v;
+  std::memcpy(&v, p, 8);
+  return __builtin_bswap64(v); // XDR is big-endian; the targets here are little-endian
 }
 std::uint32_t loadBE32(const unsigned char* p) {
-  return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | p[3];
+  std::uint32_t v;
+  std::memcpy(&v, p, 4);
+  return __builtin_bswap32(v);
 }
 double loadDouble(const unsigned char* p) {
   const std::uint64_t bits = loadBE64(p);
@@ -535,6 +566,7 @@ ParticleFrame parseSs(std::string_view bytes, const std::string& fileName, bool 
   s.material.assign(count, 0);
   s.id.resize(count);
   ExtraArray color{"Color", 1, std::vector<double>(count)};
+#pragma omp parallel for schedule(static) if (count >= 20000)
   for (std::size_t i = 0; i < count; ++i) {
     const unsigned char* q = p + kSsHeader + kSsParticle * i;
     s.mass[i] = loadDouble(q) * M;
@@ -546,7 +578,8 @@ ParticleFrame parseSs(std::string_view bytes, const std::string& fileName, bool 
     }
     color.values[i] = loadInt(q + 88);
     s.id[i] = loadInt(q + 92);
-    s.density[i] = s.radius[i] > 0.0 ? s.mass[i] / (4.0 / 3.0 * M_PI * std::pow(s.radius[i], 3)) : 0.0;
+    const double r = s.radius[i];
+    s.density[i] = r > 0.0 ? s.mass[i] / (4.0 / 3.0 * M_PI * r * r * r) : 0.0;
   }
   f.extra.push_back(std::move(color));
   f.hasVelocity = f.hasAngularVelocity = f.hasRadius = f.hasMass = f.hasDensity = f.hasId = true;

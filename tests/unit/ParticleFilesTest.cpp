@@ -275,3 +275,22 @@ run 0
   EXPECT_EQ(std::count(f.particles.material.begin(), f.particles.material.end(), 1), 100);
   std::filesystem::remove_all(dir);
 }
+
+// Large snapshots are parsed in parallel: the same values, and the first bad row reported.
+TEST(LammpsDump, LargeSnapshotsParseInParallelAndReportTheFirstBadRow) {
+  const ParticleFrame f = randomFrame(50000, 6);
+  std::string text = writeDump(f);
+  const std::vector<DumpIndexEntry> index = indexDump(text, "big.dump");
+  expectSameParticles(f.particles, parseDumpSnapshot(text, index[0], "big.dump").particles);
+  // Corrupt the rows on file lines 30010 and 45010 (the later one first, so both stay put).
+  auto lineStart = [&](std::size_t line) {
+    std::size_t pos = 0;
+    for (std::size_t k = 1; k < line; ++k)
+      pos = text.find('\n', pos) + 1;
+    return pos;
+  };
+  text.insert(lineStart(45010), "x");
+  text.insert(lineStart(30010), "y");
+  EXPECT_NE(dumpError(text).find("bad.dump:30010: expected an integer for id, got 'y"), std::string::npos)
+      << dumpError(text);
+}
