@@ -294,3 +294,31 @@ TEST(LammpsDump, LargeSnapshotsParseInParallelAndReportTheFirstBadRow) {
   EXPECT_NE(dumpError(text).find("bad.dump:30010: expected an integer for id, got 'y"), std::string::npos)
       << dumpError(text);
 }
+
+// Dumps written by LIGGGHTS itself (data/samples/liggghts, see its README): counts and mass as
+// its thermo output printed them, velocities as free fall.
+TEST(ParticleFiles, ReadsTheLiggghtsSampleSeries) {
+  const std::string dir = std::string(CRATERKIT_SOURCE_DIR) + "/data/samples/liggghts/";
+  for (int step : {0, 1000, 2000, 3000}) {
+    const std::string path = dir + "dump." + std::to_string(step) + ".liggghts";
+    const std::string text = readFileBytes(path);
+    const std::vector<DumpIndexEntry> index = indexDump(text, path);
+    ASSERT_EQ(index.size(), 1u);
+    EXPECT_EQ(index[0].timestep, step);
+    const ParticleFrame f = parseDumpSnapshot(text, index[0], path);
+    if (step == 0) {
+      EXPECT_EQ(f.particles.size(), 0u); // inserted at step 1
+      continue;
+    }
+    ASSERT_EQ(f.particles.size(), 60u);
+    double mass = 0.0, vz = 0.0;
+    for (std::size_t i = 0; i < 60; ++i) {
+      mass += f.particles.mass[i];
+      vz += f.particles.velocity[3 * i + 2] / 60.0;
+      EXPECT_EQ(f.particles.radius[i], 0.005);
+    }
+    EXPECT_NEAR(mass, 0.078539816, 1e-6); // LIGGGHTS prints 6 significant digits per atom
+    // LIGGGHTS inserts at step 1 and the first kick is a full step: v = -g (step - 1/2) dt.
+    EXPECT_NEAR(vz, -9.81 * (step - 0.5) * 1e-5, 2e-6);
+  }
+}
