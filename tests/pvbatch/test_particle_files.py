@@ -46,6 +46,12 @@ ss_si = simple.PkdgravSsReader(FileNames=[ss_path], PkdgravUnits=0)
 x_raw = vtk_to_numpy(fetch(ss_si).GetPoints().GetData())
 t.check(abs(x_raw[:, 0].max() - x_ref[:, 0].max() / 1.495978707e11) < 1e-20, "PkdgravUnits=0 should leave AU values")
 
+# File › Save Data picks the writer by extension.
+saved = os.path.join(folder, "saved.ss")
+simple.SaveData(saved, proxy=bed)
+t.check(os.path.isfile(saved) and open(saved, "rb").read() == open(ss_path, "rb").read(),
+        "SaveData(.ss) did not use the pkdgrav writer")
+
 # LAMMPS dump: exact round trip.
 dump_path = os.path.join(folder, "bed.dump")
 simple.LAMMPSDumpWriter(Input=bed, FileName=dump_path).UpdatePipeline()
