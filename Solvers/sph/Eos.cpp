@@ -1,0 +1,121 @@
+#include "sph/Eos.h"
+
+#include "common/Error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace craterkit {
+
+namespace {
+double tillotsonCompressed(const TillotsonParams& t, double rho, double u) {
+  const double eta = rho / t.rho0, chi = eta - 1.0;
+  return (t.a + t.b / (1.0 + u / (t.E0 * eta * eta))) * rho * u + t.A * chi + t.B * chi * chi;
+}
+double tillotsonExpanded(const TillotsonParams& t, double rho, double u) {
+  const double eta = rho / t.rho0, chi = eta - 1.0, z = t.rho0 / rho - 1.0;
+  return t.a * rho * u +
+         (t.b * rho * u / (1.0 + u / (t.E0 * eta * eta)) + t.A * chi * std::exp(-t.beta * z)) *
+             std::exp(-t.alpha * z * z);
+}
+double tillotsonPressure(const TillotsonParams& t, double rho, double u) {
+  const double eta = rho / t.rho0;
+  double p;
+  if (rho >= t.rho0 || u <= t.Eiv) {
+    p = tillotsonCompressed(t, rho, u);
+  } else if (u >= t.Ecv) {
+    p = tillotsonExpanded(t, rho, u);
+  } else {
+    p = (tillotsonCompressed(t, rho, u) * (t.Ecv - u) + tillotsonExpanded(t, rho, u) * (u - t.Eiv)) /
+        (t.Ecv - t.Eiv);
+  }
+  if (eta < t.rhoLimit && u < t.Ecv)
+    p = 0.0;
+  return p;
+}
+} // namespace
+
+double EquationOfState::pressure(double rho, double u) const {
+  switch (model) {
+  case Model::Tillotson:
+    return tillotsonPressure(tillotson, rho, u);
+  case Model::Murnaghan:
+    return murnaghanK0 / murnaghanN * (std::pow(rho / murnaghanRho0, murnaghanN) - 1.0);
+  case Model::IdealGas:
+    return (gamma - 1.0) * rho * u;
+  }
+  return 0.0;
+}
+
+double EquationOfState::soundSpeed(double rho, double u) const {
+  double c2 = 0.0;
+  switch (model) {
+  case Model::IdealGas:
+    c2 = gamma * (gamma - 1.0) * u;
+    break;
+  case Model::Murnaghan:
+    c2 = murnaghanK0 / murnaghanRho0 * std::pow(rho / murnaghanRho0, murnaghanN - 1.0);
+    break;
+  case Model::Tillotson: {
+    // Central differences (the branches are continuous; a one-sided step at ρ0 is harmless).
+    const double dr = 1e-6 * rho, du = 1e-6 * std::max(u, tillotson.E0 * 1e-3);
+    const double p = pressure(rho, u);
+    const double dpdr = (pressure(rho + dr, u) - pressure(rho - dr, u)) / (2.0 * dr);
+    const double dpdu = (pressure(rho, u + du) - pressure(rho, std::max(0.0, u - du))) / (u > du ? 2.0 * du : du + u);
+    c2 = dpdr + p / (rho * rho) * dpdu;
+    break;
+  }
+  }
+  return std::max(std::sqrt(std::max(c2, 0.0)), soundSpeedFloor);
+}
+
+void EquationOfState::validate() {
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw InputError(std::string("equation of state: ") + name + " must be positive (got " + std::to_string(v) + ")");
+  };
+  switch (model) {
+  case Model::Tillotson: {
+    const TillotsonParams& t = tillotson;
+    positive(t.rho0, "rho0");
+    positive(t.A, "A");
+    positive(t.E0, "E0");
+    positive(t.Ecv, "Ecv");
+    if (!(t.B >= 0.0) || !(t.Eiv >= 0.0) || !(t.Ecv > t.Eiv))
+      throw InputError("equation of state: Tillotson needs B >= 0 and 0 <= Eiv < Ecv");
+    if (soundSpeedFloor <= 0.0)
+      soundSpeedFloor = 0.01 * std::sqrt(t.A / t.rho0);
+    break;
+  }
+  case Model::Murnaghan:
+    positive(murnaghanRho0, "rho0");
+    positive(murnaghanK0, "K0");
+    positive(murnaghanN, "n");
+    break;
+  case Model::IdealGas:
+    if (!(gamma > 1.0) || !std::isfinite(gamma))
+      throw InputError("equation of state: gamma must be above 1 (got " + std::to_string(gamma) + ")");
+    break;
+  }
+}
+
+EquationOfState::Model EquationOfState::modelFromName(const std::string& name) {
+  if (name == "Tillotson")
+    return Model::Tillotson;
+  if (name == "Murnaghan")
+    return Model::Murnaghan;
+  if (name == "IdealGas")
+    return Model::IdealGas;
+  throw InputError("unknown equation of state '" + name + "' (Tillotson, Murnaghan, IdealGas)");
+}
+
+const char* EquationOfState::nameOf(Model m) {
+  switch (m) {
+  case Model::Tillotson: return "Tillotson";
+  case Model::Murnaghan: return "Murnaghan";
+  case Model::IdealGas: return "IdealGas";
+  }
+  return "?";
+}
+
+} // namespace craterkit

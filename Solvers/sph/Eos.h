@@ -1,0 +1,39 @@
+// Equations of state for the SPH solver, chosen by name at run time (PHYSICS.md §2.4):
+// Tillotson (Tillotson 1962; as in miluphcuda's pressure.cu), Murnaghan, ideal gas.
+// Pressure p(ρ, u) in Pa for density ρ (kg/m³) and specific internal energy u (J/kg); the
+// sound speed comes from c² = ∂p/∂ρ|_u + (p/ρ²) ∂p/∂u|_ρ, floored at `soundSpeedFloor`.
+#pragma once
+
+#include <string>
+
+namespace craterkit {
+
+struct TillotsonParams {
+  double rho0 = 2700.0;   // kg/m³
+  double A = 26.7e9;      // Pa
+  double B = 26.7e9;      // Pa
+  double E0 = 487e6;      // J/kg
+  double Eiv = 4.72e6;    // J/kg, incipient vaporisation
+  double Ecv = 18.2e6;    // J/kg, complete vaporisation
+  double a = 0.5, b = 1.5, alpha = 5.0, beta = 5.0;
+  double rhoLimit = 0.9;  // below η = ρ/ρ0 < rhoLimit and u < Ecv: p = 0 (no cold tension)
+};
+
+struct EquationOfState {
+  enum class Model { Tillotson, Murnaghan, IdealGas } model = Model::Tillotson;
+  TillotsonParams tillotson;
+  // Murnaghan: p = (K0 / n) ((ρ/ρ0)^n − 1).
+  double murnaghanRho0 = 2700.0, murnaghanK0 = 50e9, murnaghanN = 4.0;
+  // Ideal gas: p = (γ − 1) ρ u.
+  double gamma = 1.4;
+  double soundSpeedFloor = 0.0; // m/s; Tillotson default: 1 % of sqrt(A/ρ0) (set by validate)
+
+  double pressure(double rho, double u) const;
+  double soundSpeed(double rho, double u) const;
+  // Throws InputError naming the bad parameter.
+  void validate();
+  static Model modelFromName(const std::string& name);
+  static const char* nameOf(Model m);
+};
+
+} // namespace craterkit

@@ -1,0 +1,56 @@
+// SPH smoothing kernels in 3D with compact support h (the miluphcuda convention: W = 0 for
+// r >= h; a code using support 2h passes 2h). PHYSICS.md §2.1.
+//   CubicSpline: W = 8/(π h³) {6q³ − 6q² + 1 (q < ½); 2(1 − q)³ (½ ≤ q ≤ 1); 0}, q = r/h.
+//   WendlandC2:  W = 21/(2π h³) (1 − q)⁴ (1 + 4q) (Wendland 1995; Dehnen & Aly 2012), no pairing
+//                instability for large neighbour numbers.
+// Each gives W(r, h) and dW/dr(r, h); the gradient with respect to x_a is dW/dr · r_ab / r.
+#pragma once
+
+#include <cmath>
+
+namespace craterkit {
+
+struct CubicSpline {
+  static constexpr const char* name = "CubicSpline";
+  static double W(double r, double h) {
+    const double q = r / h, s = 8.0 / (M_PI * h * h * h);
+    if (q < 0.5)
+      return s * (6.0 * q * q * q - 6.0 * q * q + 1.0);
+    if (q < 1.0) {
+      const double t = 1.0 - q;
+      return s * 2.0 * t * t * t;
+    }
+    return 0.0;
+  }
+  static double dWdr(double r, double h) {
+    const double q = r / h, s = 8.0 / (M_PI * h * h * h * h);
+    if (q < 0.5)
+      return s * (18.0 * q * q - 12.0 * q);
+    if (q < 1.0) {
+      const double t = 1.0 - q;
+      return -s * 6.0 * t * t;
+    }
+    return 0.0;
+  }
+};
+
+struct WendlandC2 {
+  static constexpr const char* name = "WendlandC2";
+  static double W(double r, double h) {
+    const double q = r / h;
+    if (q >= 1.0)
+      return 0.0;
+    const double t = 1.0 - q;
+    return 21.0 / (2.0 * M_PI * h * h * h) * t * t * t * t * (1.0 + 4.0 * q);
+  }
+  static double dWdr(double r, double h) {
+    const double q = r / h;
+    if (q >= 1.0)
+      return 0.0;
+    const double t = 1.0 - q;
+    // d/dq [(1-q)^4 (1+4q)] = -20 q (1-q)^3
+    return 21.0 / (2.0 * M_PI * h * h * h * h) * (-20.0 * q * t * t * t);
+  }
+};
+
+} // namespace craterkit

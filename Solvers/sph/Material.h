@@ -1,0 +1,33 @@
+// Material data for the SPH solver, read from files under data/materials/ (one material per
+// file, "key = value" lines, '#' comments), not from code. Each names its equation of state
+// and strength model; see data/materials/README.md for the keys and the sources of the values.
+#pragma once
+
+#include "sph/Eos.h"
+
+#include <string>
+#include <vector>
+
+namespace craterkit {
+
+struct Material {
+  std::string name;
+  EquationOfState eos;
+  double shearModulus = 0.0;  // Pa (0: fluid)
+  double bulkModulus = 0.0;   // Pa
+  enum class Strength { None, VonMises, DruckerPrager } strength = Strength::None;
+  double yieldStress = 0.0;   // Pa (von Mises)
+  double frictionAngle = 30.0; // degrees (Drucker–Prager)
+  double cohesion = 0.0;      // Pa (Drucker–Prager)
+  double distention = 1.0;    // initial α = ρ_matrix / ρ_bulk (P–α porosity; 1: none)
+  std::string source;         // where the values come from
+};
+
+// Reads one material file; throws InputError naming the file and line.
+Material readMaterial(const std::string& path);
+// The materials of a directory (every *.cfg), sorted by name.
+std::vector<Material> readMaterialLibrary(const std::string& directory);
+// The material called `name`; the error lists the names that exist.
+Material findMaterial(const std::string& directory, const std::string& name);
+
+} // namespace craterkit
