@@ -1,0 +1,174 @@
+// The Sod shock tube in a 3D slab of SPH particles against the exact Riemann solution, and
+// the conservation of momentum and energy by the hydrodynamic core.
+#include "sph/SphSolver.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+using namespace craterkit;
+
+namespace {
+
+// Exact solution of the Riemann problem for an ideal gas (Toro 2009, ch. 4).
+struct Riemann {
+  double rl, ul, pl, rr, ur, pr, g;
+  double cl, cr, ps, us;
+  Riemann(double rl_, double ul_, double pl_, double rr_, double ur_, double pr_, double g_)
+      : rl(rl_), ul(ul_), pl(pl_), rr(rr_), ur(ur_), pr(pr_), g(g_) {
+    cl = std::sqrt(g * pl / rl);
+    cr = std::sqrt(g * pr / rr);
+    double p = 0.5 * (pl + pr);
+    for (int it = 0; it < 100; ++it) {
+      double fl, dl, fr, dr;
+      f(p, rl, pl, cl, fl, dl);
+      f(p, rr, pr, cr, fr, dr);
+      const double next = std::max(1e-12, p - (fl + fr + ur - ul) / (dl + dr));
+      if (std::abs(next - p) < 1e-14 * p) {
+        p = next;
+        break;
+      }
+      p = next;
+    }
+    ps = p;
+    double fl, dl, fr, dr;
+    f(ps, rl, pl, cl, fl, dl);
+    f(ps, rr, pr, cr, fr, dr);
+    us = 0.5 * (ul + ur) + 0.5 * (fr - fl);
+  }
+  void f(double p, double rk, double pk, double ck, double& val, double& der) const {
+    if (p > pk) {
+      const double A = 2.0 / ((g + 1.0) * rk), B = (g - 1.0) / (g + 1.0) * pk;
+      val = (p - pk) * std::sqrt(A / (p + B));
+      der = std::sqrt(A / (B + p)) * (1.0 - 0.5 * (p - pk) / (B + p));
+    } else {
+      val = 2.0 * ck / (g - 1.0) * (std::pow(p / pk, (g - 1.0) / (2.0 * g)) - 1.0);
+      der = 1.0 / (rk * ck) * std::pow(p / pk, -(g + 1.0) / (2.0 * g));
+    }
+  }
+  // Density, velocity and pressure at x/t = s (left rarefaction and right shock, as in Sod).
+  void sample(double s, double& r, double& u, double& p) const {
+    if (s <= us) {
+      const double head = ul - cl, css = cl * std::pow(ps / pl, (g - 1.0) / (2.0 * g)), tail = us - css;
+      if (s <= head) {
+        r = rl, u = ul, p = pl;
+      } else if (s >= tail) {
+        r = rl * std::pow(ps / pl, 1.0 / g), u = us, p = ps;
+      } else {
+        const double c = 2.0 / (g + 1.0) * (cl + 0.5 * (g - 1.0) * (ul - s));
+        u = 2.0 / (g + 1.0) * (cl + 0.5 * (g - 1.0) * ul + s);
+        r = rl * std::pow(c / cl, 2.0 / (g - 1.0));
+        p = pl * std::pow(c / cl, 2.0 * g / (g - 1.0));
+      }
+    } else {
+      const double shock = ur + cr * std::sqrt((g + 1.0) / (2.0 * g) * ps / pr + (g - 1.0) / (2.0 * g));
+      if (s >= shock) {
+        r = rr, u = ur, p = pr;
+      } else {
+        const double q = ps / pr, k = (g - 1.0) / (g + 1.0);
+        r = rr * (q + k) / (q * k + 1.0), u = us, p = ps;
+      }
+    }
+  }
+  double shockSpeed() const { return ur + cr * std::sqrt((g + 1.0) / (2.0 * g) * ps / pr + (g - 1.0) / (2.0 * g)); }
+};
+
+// Two Sod interfaces at x = ±0.5 in a periodic box [-1, 1) x [0, W)²: the centre holds the
+// dense state. Equal-mass particles on cubic lattices (spacing dx and 2 dx).
+SphState sodSlab(double dx, double width, double gamma) {
+  SphState s;
+  const double m = dx * dx * dx; // density 1 on spacing dx
+  const double zero[3] = {0, 0, 0};
+  auto fill = [&](double x0, double x1, double spacing, double rho, double p) {
+    const int nx = static_cast<int>(std::round((x1 - x0) / spacing));
+    const int ny = static_cast<int>(std::round(width / spacing));
+    for (int i = 0; i < nx; ++i)
+      for (int j = 0; j < ny; ++j)
+        for (int k = 0; k < ny; ++k) {
+          const double pos[3] = {x0 + (i + 0.5) * spacing, (j + 0.5) * spacing, (k + 0.5) * spacing};
+          s.add(pos, zero, m, rho, p / ((gamma - 1.0) * rho), 0);
+        }
+  };
+  fill(-0.5, 0.5, dx, 1.0, 1.0);
+  fill(0.5, 1.5, 2.0 * dx, 0.125, 0.1); // wraps to [-1, -0.5) through the periodic box
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.x[3 * i] >= 1.0)
+      s.x[3 * i] -= 2.0;
+  return s;
+}
+} // namespace
+
+// DISABLED while the SPH solver is under construction (issue 4): at dx = 1/100 the run is stable
+// (momentum to round-off, energy to 1e-3) but the plateaus either side of the contact disagree
+// with the exact solution (pressure 0.383 left of the contact and 0.274 behind the shock, exact
+// 0.303; L1 density 4.4 %, velocity 12 %, pressure 5.5 %). Run it with
+// --gtest_also_run_disabled_tests --gtest_filter='*Sod*' (SOD_DEBUG=1 prints the bins).
+TEST(SphShockTube, DISABLED_SodProfilesMatchTheExactRiemannSolution) {
+  const double gamma = 1.4, dx = 1.0 / 100.0, width = 8 * dx, tEnd = 0.2;
+  SphParams par;
+  EquationOfState gas;
+  gas.model = EquationOfState::Model::IdealGas;
+  gas.gamma = gamma;
+  par.eos = {gas};
+  par.summationDensity = true;
+  for (int k = 0; k < 3; ++k)
+    par.periodic[k] = true;
+  par.boxLo[0] = -1.0;
+  par.boxHi[0] = 1.0;
+  par.boxHi[1] = par.boxHi[2] = width;
+  SphSolver solver(sodSlab(dx, width, gamma), par);
+  const double e0 = solver.totalEnergy();
+  solver.advanceTo(tEnd);
+  double mom[3];
+  solver.totalMomentum(mom);
+  EXPECT_LT(std::abs(mom[0]), 1e-12);
+  EXPECT_NEAR(solver.totalEnergy(), e0, 1e-3 * e0);
+
+  // Bin the right interface (x = 0.5), compare away from the waves' edges.
+  const Riemann exact(1.0, 0.0, 1.0, 0.125, 0.0, 0.1, gamma);
+  const SphState& s = solver.state();
+  const int bins = 80;
+  const double lo = 0.1, hi = 0.9, w = (hi - lo) / bins;
+  std::vector<double> n(bins), rho(bins), vel(bins), pre(bins);
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const int b = static_cast<int>((s.x[3 * i] - lo) / w);
+    if (s.x[3 * i] < lo || b < 0 || b >= bins)
+      continue;
+    n[b] += 1;
+    rho[b] += s.rho[i];
+    vel[b] += s.v[3 * i];
+    pre[b] += solver.pressure()[i];
+  }
+  const double t = solver.time();
+  const double edges[5] = {-exact.cl * t, (exact.us - exact.cl * std::pow(exact.ps / exact.pl, 0.2 / 2.8)) * t,
+                           exact.us * t, exact.shockSpeed() * t, 0.0};
+  double err[3] = {0, 0, 0}, ref[3] = {0, 0, 0};
+  int used = 0;
+  for (int b = 0; b < bins; ++b) {
+    const double xc = lo + (b + 0.5) * w - 0.5;
+    bool near = false;
+    for (int e = 0; e < 4; ++e)
+      near = near || std::abs(xc - edges[e]) < 0.05;
+    if (near || n[b] == 0)
+      continue;
+    double r, u, p;
+    exact.sample(xc / t, r, u, p);
+    if (std::getenv("SOD_DEBUG"))
+      std::printf("%6.3f  rho %.3f/%.3f  u %.3f/%.3f  p %.3f/%.3f\n", xc, rho[b] / n[b], r, vel[b] / n[b], u, pre[b] / n[b], p);
+    err[0] += std::abs(rho[b] / n[b] - r);
+    ref[0] += r;
+    err[1] += std::abs(vel[b] / n[b] - u);
+    ref[1] += std::abs(u);
+    err[2] += std::abs(pre[b] / n[b] - p);
+    ref[2] += p;
+    ++used;
+  }
+  std::printf("Sod at t = %.3f: L1 density %.2f %%, velocity %.2f %%, pressure %.2f %% over %d bins\n", t,
+              100 * err[0] / ref[0], 100 * err[1] / ref[1], 100 * err[2] / ref[2], used);
+  EXPECT_GT(used, 40);
+  EXPECT_LT(err[0] / ref[0], 0.05);
+  EXPECT_LT(err[1] / ref[1], 0.05);
+  EXPECT_LT(err[2] / ref[2], 0.05);
+}
