@@ -195,32 +195,38 @@ double HardDiskSystem::smallestGap() const {
   return best;
 }
 
+double HardDiskSystem::gapNow(std::size_t i, std::size_t j) const {
+  const double dti = time_ - h_[i].t, dtj = time_ - h_[j].t, acc = p_.gravity;
+  double dx = h_[j].x + h_[j].vx * dtj - h_[i].x - h_[i].vx * dti;
+  double dy = h_[j].y + (h_[j].vy - 0.5 * acc * dtj) * dtj - h_[i].y - (h_[i].vy - 0.5 * acc * dti) * dti;
+  if (p_.periodicX)
+    dx = minimumImage(dx, p_.width);
+  if (p_.periodicY)
+    dy = minimumImage(dy, p_.height);
+  return std::sqrt(dx * dx + dy * dy) - (h_[i].r + h_[j].r) * growth(time_);
+}
+
+template <class F> void HardDiskSystem::forNearby(std::size_t i, F&& f) const {
+  const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
+  forAxisCells(cy, reach_[i], static_cast<long>(ny_), p_.periodicY, [&](long ky) {
+    forAxisCells(cx, reach_[i], static_cast<long>(nx_), p_.periodicX, [&](long kx) {
+      for (std::int32_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
+           k = h_[static_cast<std::size_t>(k)].next)
+        f(static_cast<std::size_t>(k));
+    });
+  });
+}
+
 double HardDiskSystem::smallestGapNearby() const {
   double best = kInf;
-  const double g = growth(time_);
-  auto gap = [&](std::size_t i, std::size_t j) {
-    const double dti = time_ - h_[i].t, dtj = time_ - h_[j].t, acc = p_.gravity;
-    double dx = h_[j].x + h_[j].vx * dtj - h_[i].x - h_[i].vx * dti;
-    double dy = h_[j].y + (h_[j].vy - 0.5 * acc * dtj) * dtj - h_[i].y - (h_[i].vy - 0.5 * acc * dti) * dti;
-    if (p_.periodicX)
-      dx -= p_.width * std::round(dx / p_.width);
-    if (p_.periodicY)
-      dy -= p_.height * std::round(dy / p_.height);
-    best = std::min(best, std::sqrt(dx * dx + dy * dy) - (h_[i].r + h_[j].r) * g);
-  };
-  for (std::size_t i = 0; i < d_.size(); ++i) {
-    const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
-    forAxisCells(cy, reach_[i], static_cast<long>(ny_), p_.periodicY, [&](long ky) {
-      forAxisCells(cx, reach_[i], static_cast<long>(nx_), p_.periodicX, [&](long kx) {
-        for (std::int32_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
-             k = h_[static_cast<std::size_t>(k)].next)
-          if (static_cast<std::size_t>(k) > i && !isBig_[static_cast<std::size_t>(k)])
-            gap(i, static_cast<std::size_t>(k));
-      });
+  for (std::size_t i = 0; i < h_.size(); ++i) {
+    forNearby(i, [&](std::size_t j) {
+      if (j > i && !isBig_[j])
+        best = std::min(best, gapNow(i, j));
     });
     for (std::uint32_t b : bigs_)
       if (!isBig_[i] || b > i)
-        gap(i, b);
+        best = std::min(best, gapNow(i, b));
   }
   return best;
 }
@@ -429,15 +435,9 @@ void HardDiskSystem::predict(std::size_t i) {
       }
     }
   } else {
-    forAxisCells(cy, reach, ny, p_.periodicY, [&](long ky) {
-      forAxisCells(cx, reach, nx, p_.periodicX, [&](long kx) {
-        for (std::int32_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
-             k = h_[static_cast<std::size_t>(k)].next) {
-          const std::size_t j = static_cast<std::size_t>(k);
-          if (j != i && !isBig_[j])
-            consider(i, j, best);
-        }
-      });
+    forNearby(i, [&](std::size_t j) {
+      if (j != i && !isBig_[j])
+        consider(i, j, best);
     });
   }
   for (std::uint32_t b : bigs_)
@@ -641,30 +641,13 @@ bool HardDiskSystem::step(double limit) {
 void HardDiskSystem::verify(std::size_t i) const {
   const double g = growth(time_);
   auto check = [&](std::size_t j) {
-    if (j == i)
-      return;
-    const double dti = time_ - h_[i].t, dtj = time_ - h_[j].t, acc = p_.gravity;
-    double dx = h_[j].x + h_[j].vx * dtj - h_[i].x - h_[i].vx * dti;
-    double dy = h_[j].y + (h_[j].vy - 0.5 * acc * dtj) * dtj - h_[i].y - (h_[i].vy - 0.5 * acc * dti) * dti;
-    if (p_.periodicX)
-      dx -= p_.width * std::round(dx / p_.width);
-    if (p_.periodicY)
-      dy -= p_.height * std::round(dy / p_.height);
-    const double sigma = (h_[i].r + h_[j].r) * g;
-    if (std::sqrt(dx * dx + dy * dy) < sigma * (1.0 - 1e-9)) {
+    if (j != i && gapNow(i, j) < -1e-9 * (h_[i].r + h_[j].r) * g) {
       std::ostringstream msg;
       msg << describeDisk(d_, i) << " overlaps " << describeDisk(d_, j) << " at t = " << time_;
       throw std::logic_error(msg.str());
     }
   };
-  const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
-  forAxisCells(cy, reach_[i], static_cast<long>(ny_), p_.periodicY, [&](long ky) {
-    forAxisCells(cx, reach_[i], static_cast<long>(nx_), p_.periodicX, [&](long kx) {
-      for (std::int32_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
-           k = h_[static_cast<std::size_t>(k)].next)
-        check(static_cast<std::size_t>(k));
-    });
-  });
+  forNearby(i, check);
   for (std::uint32_t b : bigs_)
     check(b);
   // Inside the box along walled axes.

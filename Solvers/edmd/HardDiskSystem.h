@@ -127,6 +127,8 @@ private:
   void crossCell(std::size_t i, std::uint32_t direction);
   bool step(double limit); // one event before limit; false if none
   void verify(std::size_t i) const;
+  double gapNow(std::size_t i, std::size_t j) const; // distance minus contact distance, now
+  template <class F> void forNearby(std::size_t i, F&& f) const; // disks in i's cells
   bool checkOverlaps_ = false;
   void insertInCell(std::size_t i, std::size_t cx, std::size_t cy);
   void removeFromCell(std::size_t i);

@@ -52,12 +52,16 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
       if (!std::isfinite(s_.x[3 * i + k]) || !std::isfinite(s_.v[3 * i + k]))
         throw InputError("SPH: particle " + std::to_string(i) + " has a non-finite position or velocity");
   }
-  wrap(s_);
-  updateSmoothing(s_);
-  if (par_.summationDensity)
-    densityBySummation(s_);
+  settle(s_);
   Rates r;
   lastMaxSignal_ = computeRates(s_, r, p_, cs_);
+}
+
+void SphSolver::settle(SphState& s) const {
+  wrap(s);
+  updateSmoothing(s);
+  if (par_.summationDensity)
+    densityBySummation(s);
 }
 
 
@@ -240,10 +244,7 @@ double SphSolver::step(double dt) {
     mid.rho[i] += dt * k1.drho[i];
     mid.u[i] = std::max(0.0, mid.u[i] + dt * k1.du[i]);
   }
-  wrap(mid);
-  updateSmoothing(mid);
-  if (par_.summationDensity)
-    densityBySummation(mid);
+  settle(mid);
   computeRates(mid, k2, p, c);
   for (std::size_t i = 0; i < 3 * n; ++i) {
     s_.x[i] += 0.5 * dt * (k1.dx[i] + k2.dx[i]);
@@ -256,10 +257,7 @@ double SphSolver::step(double dt) {
       throw std::runtime_error("SPH: particle " + std::to_string(i) + " has a non-positive density at t = " +
                                std::to_string(time_ + dt));
   }
-  wrap(s_);
-  updateSmoothing(s_);
-  if (par_.summationDensity)
-    densityBySummation(s_);
+  settle(s_);
   Rates r;
   lastMaxSignal_ = computeRates(s_, r, p_, cs_);
   time_ += dt;

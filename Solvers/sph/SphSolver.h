@@ -63,6 +63,9 @@ private:
   void updateSmoothing(SphState& s) const;
   void densityBySummation(SphState& s) const;
   void wrap(SphState& s) const;
+  // After a position update: positions into the periodic box, h from ρ, and ρ by summation
+  // when asked.
+  void settle(SphState& s) const;
   SphState s_;
   SphParams par_;
   std::vector<double> p_, cs_; // pressure and sound speed of the current state
