@@ -127,6 +127,8 @@ struct Neighbourhood {
 template <class K> void summationDensity(SphState& s, const SphParams& par) {
   const Neighbourhood nb(s, par);
   std::vector<double> rho(s.size(), 0.0);
+  // One particle per iteration, its own sum: the same result for any thread count.
+#pragma omp parallel for schedule(dynamic, 256) if (s.size() >= 512)
   for (std::size_t a = 0; a < s.size(); ++a) {
     const double* xa = &s.x[3 * a];
     double sum = 0.0;
@@ -155,6 +157,9 @@ double rates(const SphState& s, const SphParams& par, const std::vector<double>&
   drho.assign(n, 0.0);
   du.assign(n, 0.0);
   double maxSignal = 0.0;
+  // Each particle accumulates only its own rates (pairs are visited from both sides), so the
+  // loop needs no atomics and gives the same bits for any thread count.
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : maxSignal) if (n >= 512)
   for (std::size_t a = 0; a < n; ++a) {
     const double* xa = &s.x[3 * a];
     const double* va = &s.v[3 * a];
@@ -205,6 +210,7 @@ double SphSolver::computeRates(const SphState& s, Rates& r, std::vector<double>&
   const std::size_t n = s.size();
   p.resize(n);
   c.resize(n);
+#pragma omp parallel for schedule(static) if (n >= 512)
   for (std::size_t i = 0; i < n; ++i) {
     const EquationOfState& e = par_.eos[static_cast<std::size_t>(s.material[i])];
     p[i] = e.pressure(s.rho[i], s.u[i]);

@@ -5,10 +5,11 @@
 // density (h = κ (m/ρ)^{1/3}, support h), equations of state by material, periodic or open
 // boundaries, uniform gravity, and Heun's predictor–corrector (RK2) with a Courant time step.
 // Neighbours come from a cell list rebuilt at every force evaluation; periodic axes use ghost
-// copies of the particles within one support radius of a face.
+// copies of the particles within one support radius of a face. OpenMP over particles, the
+// same bits for any thread count.
 //
 // Not yet here (issue 4 continues): deviatoric stress and strength, porosity, damage, variable
-// h with ∇h terms, OpenMP, checkpoints.
+// h with ∇h terms, checkpoints.
 #pragma once
 
 #include "sph/Eos.h"

@@ -3,6 +3,7 @@
 #include "sph/SphSolver.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <cstdio>
@@ -171,4 +172,33 @@ TEST(SphShockTube, SodProfilesMatchTheExactRiemannSolution) {
   EXPECT_LT(err[0] / ref[0], 0.05);
   EXPECT_LT(err[1] / ref[1], 0.05);
   EXPECT_LT(err[2] / ref[2], 0.05);
+}
+
+// The SPH loops run over particles with OpenMP: one and two threads give the same bits.
+TEST(SphSolver, ThreadCountDoesNotChangeTheResult) {
+  const double gamma = 1.4, dx = 1.0 / 40.0, width = 8 * dx;
+  SphParams par;
+  EquationOfState gas;
+  gas.model = EquationOfState::Model::IdealGas;
+  gas.gamma = gamma;
+  par.eos = {gas};
+  par.summationDensity = true;
+  for (int k = 0; k < 3; ++k)
+    par.periodic[k] = true;
+  par.boxLo[0] = -1.0;
+  par.boxHi[0] = 1.0;
+  par.boxHi[1] = par.boxHi[2] = width;
+  auto run = [&](int threads) {
+    omp_set_num_threads(threads);
+    SphSolver solver(sodSlab(dx, width, gamma), par);
+    for (int k = 0; k < 5; ++k)
+      solver.step();
+    return solver.state();
+  };
+  const SphState one = run(1), two = run(2);
+  EXPECT_EQ(one.x, two.x);
+  EXPECT_EQ(one.v, two.v);
+  EXPECT_EQ(one.u, two.u);
+  EXPECT_EQ(one.rho, two.rho);
+  omp_set_num_threads(1);
 }
