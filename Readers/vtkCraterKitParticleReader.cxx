@@ -83,7 +83,7 @@ int vtkCraterKitParticleReader::CanReadFile(const char* name)
   return name && FormatOf(name) != AUTOMATIC ? 1 : 0;
 }
 
-bool vtkCraterKitParticleReader::Load()
+void vtkCraterKitParticleReader::Load()
 {
   using namespace craterkit;
   if (!this->FileName || !*this->FileName)
@@ -92,7 +92,7 @@ bool vtkCraterKitParticleReader::Load()
   const int format = this->Format != AUTOMATIC ? this->Format : FormatOf(file);
   if (this->Loaded && this->Loaded->File == file && this->Loaded->Format == format &&
     this->Loaded->Units == this->PkdgravUnits)
-    return true;
+    return;
   this->Loaded.reset();
   auto cache = std::make_unique<Cache>();
   cache->File = file;
@@ -127,7 +127,6 @@ bool vtkCraterKitParticleReader::Load()
       break;
     }
   this->Loaded = std::move(cache);
-  return true;
 }
 
 int vtkCraterKitParticleReader::RequestInformation(

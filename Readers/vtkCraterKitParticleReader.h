@@ -58,7 +58,7 @@ private:
   void operator=(const vtkCraterKitParticleReader&) = delete;
   struct Cache;
   std::unique_ptr<Cache> Loaded;
-  bool Load(); // reads and indexes the file when the name or format changed
+  void Load(); // reads and indexes the file when the name or format changed; throws on errors
 };
 
 #endif

@@ -216,7 +216,6 @@ double SphSolver::computeRates(const SphState& s, Rates& r, std::vector<double>&
     p[i] = e.pressure(s.rho[i], s.u[i]);
     c[i] = e.soundSpeed(s.rho[i], s.u[i]);
   }
-  r.dx = s.v;
   if (par_.kernel == SphParams::Kernel::WendlandC2)
     return rates<WendlandC2>(s, par_, p, c, r.dv, r.drho, r.du);
   return rates<CubicSpline>(s, par_, p, c, r.dv, r.drho, r.du);
@@ -243,7 +242,7 @@ double SphSolver::step(double dt) {
   SphState mid = s_;
   const std::size_t n = s_.size();
   for (std::size_t i = 0; i < 3 * n; ++i) {
-    mid.x[i] += dt * k1.dx[i];
+    mid.x[i] += dt * s_.v[i];
     mid.v[i] += dt * k1.dv[i];
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -253,7 +252,7 @@ double SphSolver::step(double dt) {
   settle(mid);
   computeRates(mid, k2, p, c);
   for (std::size_t i = 0; i < 3 * n; ++i) {
-    s_.x[i] += 0.5 * dt * (k1.dx[i] + k2.dx[i]);
+    s_.x[i] += 0.5 * dt * (s_.v[i] + mid.v[i]); // before v is updated below
     s_.v[i] += 0.5 * dt * (k1.dv[i] + k2.dv[i]);
   }
   for (std::size_t i = 0; i < n; ++i) {

@@ -56,7 +56,7 @@ public:
 
 private:
   struct Rates {
-    std::vector<double> dv, drho, du, dx;
+    std::vector<double> dv, drho, du; // dx/dt is the state's own velocity
   };
   // Rates of state s; fills pressure and sound speed of s into p, c; returns the largest
   // signal speed over h (for the time step).
