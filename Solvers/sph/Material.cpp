@@ -22,6 +22,13 @@ std::string trim(const std::string& s) {
 }
 } // namespace
 
+Material fluidMaterial(const EquationOfState& eos, const std::string& name) {
+  Material m;
+  m.name = name;
+  m.eos = eos;
+  return m;
+}
+
 Material readMaterial(const std::string& path) {
   std::ifstream in(path);
   if (!in)
@@ -49,6 +56,8 @@ Material readMaterial(const std::string& path) {
       {"friction_angle", [&](double v) { m.frictionAngle = v; }},
       {"cohesion", [&](double v) { m.cohesion = v; }},
       {"distention", [&](double v) { m.distention = v; }},
+      {"crush_pe", [&](double v) { m.crushPe = v; }},
+      {"crush_ps", [&](double v) { m.crushPs = v; }},
   };
   std::string line;
   int lineNo = 0;
@@ -108,6 +117,10 @@ Material readMaterial(const std::string& path) {
     throw InputError(path + ": distention must be at least 1");
   if (m.shearModulus < 0.0 || m.bulkModulus < 0.0 || m.yieldStress < 0.0 || m.cohesion < 0.0)
     throw InputError(path + ": moduli, yield stress and cohesion must not be negative");
+  if (!(m.crushPe >= 0.0 && m.crushPs > m.crushPe))
+    throw InputError(path + ": the crush curve needs 0 <= crush_pe < crush_ps");
+  if (m.strength != Material::Strength::None && !(m.shearModulus > 0.0))
+    throw InputError(path + ": a material with strength needs a positive shear_modulus");
   if (!(m.frictionAngle >= 0.0 && m.frictionAngle < 90.0))
     throw InputError(path + ": friction_angle must be in [0, 90) degrees");
   try {

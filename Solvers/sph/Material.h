@@ -20,8 +20,13 @@ struct Material {
   double frictionAngle = 30.0; // degrees (Drucker–Prager)
   double cohesion = 0.0;      // Pa (Drucker–Prager)
   double distention = 1.0;    // initial α = ρ_matrix / ρ_bulk (P–α porosity; 1: none)
+  double crushPe = 1e6;       // Pa, elastic limit of the quadratic P–α crush curve
+  double crushPs = 1e9;       // Pa, pressure at which the pores are closed (α = 1)
   std::string source;         // where the values come from
 };
+
+// A material with this equation of state and no strength or porosity (a fluid).
+Material fluidMaterial(const EquationOfState& eos, const std::string& name = "fluid");
 
 // Reads one material file; throws InputError naming the file and line.
 Material readMaterial(const std::string& path);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 namespace craterkit {
@@ -19,268 +20,579 @@ void SphState::add(const double pos[3], const double vel[3], double m, double de
   rho.push_back(density);
   u.push_back(energy);
   h.push_back(0.0);
+  S.insert(S.end(), 6, 0.0);
+  alpha.push_back(1.0);
+  damage.push_back(0.0);
   material.push_back(mat);
 }
 
 void SphParams::validate() const {
-  if (eos.empty())
-    throw InputError("SPH: no equation of state");
-  if (!(alpha >= 0.0) || !(beta >= 0.0))
-    throw InputError("SPH: artificial viscosity alpha and beta must not be negative");
+  if (materials.empty())
+    throw InputError("SPH: no material");
+  if (!(alpha >= 0.0) || !(beta >= 0.0) || !std::isfinite(alpha) || !std::isfinite(beta))
+    throw InputError("SPH: artificial viscosity alpha and beta must be finite and not negative");
+  if (!(xsph >= 0.0 && xsph <= 1.0))
+    throw InputError("SPH: the XSPH factor must be in [0, 1]");
   if (!(kappa > 1.0 && kappa < 10.0))
     throw InputError("SPH: kappa (support radius over particle spacing) must be in (1, 10)");
   if (!(courant > 0.0 && courant <= 1.0))
     throw InputError("SPH: the Courant number must be in (0, 1]");
-  for (int k = 0; k < 3; ++k)
+  if (!(forceFactor > 0.0 && forceFactor <= 1.0))
+    throw InputError("SPH: the force time-step factor must be in (0, 1]");
+  if (!(minTimeStep >= 0.0))
+    throw InputError("SPH: the time-step floor must not be negative");
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(gravity[k]) || !std::isfinite(pointMassAt[k]))
+      throw InputError("SPH: gravity must be finite");
     if (periodic[k] && !(boxHi[k] > boxLo[k]))
       throw InputError("SPH: a periodic axis needs boxHi > boxLo");
+  }
+  if (!(pointMassGM >= 0.0) || !std::isfinite(pointMassGM))
+    throw InputError("SPH: the point mass GM must be finite and not negative");
 }
+
+namespace {
+
+constexpr std::uint32_t kNoShift = 13; // image code (sx+1) + 3 (sy+1) + 9 (sz+1) of the particle itself
+
+// Derived constants of a material's strength and porosity model.
+struct Rheology {
+  enum Kind { Fluid, VonMises, DruckerPrager } kind = Fluid;
+  double G = 0.0;
+  double yield = 0.0;            // von Mises: uniaxial yield stress Y0 (√(3 J2) ≤ Y0)
+  double dpK = 0.0, dpB3 = 0.0;  // Drucker–Prager: √J2 ≤ k + 3B p
+  double alpha0 = 1.0, pe = 0.0, ps = 1.0;
+  explicit Rheology(const Material& m) {
+    G = m.shearModulus;
+    alpha0 = m.distention;
+    pe = m.crushPe;
+    ps = m.crushPs;
+    switch (m.strength) {
+    case Material::Strength::None:
+      kind = Fluid;
+      break;
+    case Material::Strength::VonMises:
+      kind = VonMises;
+      yield = m.yieldStress;
+      break;
+    case Material::Strength::DruckerPrager: {
+      kind = DruckerPrager;
+      const double phi = m.frictionAngle * M_PI / 180.0, sn = std::sin(phi);
+      const double d = std::sqrt(3.0) * (3.0 - sn);
+      dpK = 6.0 * m.cohesion * std::cos(phi) / d;
+      dpB3 = 3.0 * 2.0 * sn / d;
+      break;
+    }
+    }
+  }
+  // α on the quadratic crush curve at bulk pressure p.
+  double crushAlpha(double p) const {
+    if (p <= pe)
+      return alpha0;
+    if (p >= ps)
+      return 1.0;
+    const double t = (ps - p) / (ps - pe);
+    return 1.0 + (alpha0 - 1.0) * t * t;
+  }
+};
+
+double dot6(const double* a, const double* b) { // A:B for symmetric tensors stored xx yy zz xy xz yz
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + 2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
+}
+
+} // namespace
 
 SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(initial), par_(params) {
   par_.validate();
-  for (EquationOfState& e : par_.eos)
-    e.validate();
+  for (std::size_t m = 0; m < par_.materials.size(); ++m) {
+    Material& mat = par_.materials[m];
+    try {
+      mat.eos.validate();
+    } catch (const InputError& e) {
+      throw InputError("SPH: material '" + mat.name + "': " + e.what());
+    }
+    if (mat.strength != Material::Strength::None && !(mat.shearModulus > 0.0))
+      throw InputError("SPH: material '" + mat.name + "' has strength but no shear modulus");
+    if (!(mat.crushPs > mat.crushPe) || !(mat.distention >= 1.0))
+      throw InputError("SPH: material '" + mat.name + "' has a bad porosity model");
+  }
   const std::size_t n = s_.size();
   if (n == 0)
     throw InputError("SPH: no particles");
+  if (n >= (std::size_t(1) << 27))
+    throw InputError("SPH: more than 2^27 particles");
+  if (s_.x.size() != 3 * n || s_.v.size() != 3 * n || s_.rho.size() != n || s_.u.size() != n ||
+      s_.S.size() != 6 * n || s_.alpha.size() != n || s_.damage.size() != n || s_.material.size() != n)
+    throw InputError("SPH: the particle arrays differ in length");
+  s_.h.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (!(s_.mass[i] > 0.0) || !(s_.rho[i] > 0.0) || !(s_.u[i] >= 0.0))
-      throw InputError("SPH: particle " + std::to_string(i) + " has a non-positive mass or density or a negative energy");
-    if (s_.material[i] < 0 || static_cast<std::size_t>(s_.material[i]) >= par_.eos.size())
-      throw InputError("SPH: particle " + std::to_string(i) + " has an unknown material index");
+    const std::string which = "SPH: particle " + std::to_string(i);
+    if (!(s_.mass[i] > 0.0) || !(s_.rho[i] > 0.0) || !(s_.u[i] >= 0.0) || !std::isfinite(s_.mass[i]) ||
+        !std::isfinite(s_.rho[i]) || !std::isfinite(s_.u[i]))
+      throw InputError(which + " has a non-positive mass or density or a negative energy");
+    if (s_.material[i] < 0 || static_cast<std::size_t>(s_.material[i]) >= par_.materials.size())
+      throw InputError(which + " has an unknown material index");
+    if (!(s_.alpha[i] >= 1.0) || !std::isfinite(s_.alpha[i]))
+      throw InputError(which + " has a distention below 1");
+    if (!(s_.damage[i] >= 0.0 && s_.damage[i] <= 1.0))
+      throw InputError(which + " has a damage outside [0, 1]");
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(s_.x[3 * i + k]) || !std::isfinite(s_.v[3 * i + k]))
-        throw InputError("SPH: particle " + std::to_string(i) + " has a non-finite position or velocity");
+        throw InputError(which + " has a non-finite position or velocity");
+    for (int k = 0; k < 6; ++k)
+      if (!std::isfinite(s_.S[6 * i + k]))
+        throw InputError(which + " has a non-finite stress");
   }
-  settle(s_);
-  Rates r;
-  lastMaxSignal_ = computeRates(s_, r, p_, cs_);
+  for (std::size_t i = 0; i < n; ++i)
+    s_.h[i] = par_.kappa * std::cbrt(s_.mass[i] / s_.rho[i]);
+  buildNeighbours(s_, 0.0);
+  settle(s_, p_, c_);
+  const double signal = computeRates(s_, p_, c_, k1_);
+  stableStep_ = limitStep(s_, k1_, signal);
 }
 
-void SphSolver::settle(SphState& s) const {
-  wrap(s);
-  updateSmoothing(s);
-  if (par_.summationDensity)
-    densityBySummation(s);
+void SphSolver::imageShift(std::uint32_t code, double d[3]) const {
+  const int sh[3] = {static_cast<int>(code % 3) - 1, static_cast<int>(code / 3 % 3) - 1, static_cast<int>(code / 9) - 1};
+  for (int k = 0; k < 3; ++k)
+    d[k] = sh[k] * (par_.boxHi[k] - par_.boxLo[k]);
 }
 
-
-void SphSolver::updateSmoothing(SphState& s) const {
-  for (std::size_t i = 0; i < s.size(); ++i)
-    s.h[i] = par_.kappa * std::cbrt(s.mass[i] / s.rho[i]);
+void SphSolver::buildNeighbours(const SphState& s, double margin) {
+  const std::size_t n = s.size();
+  const double hmax = *std::max_element(s.h.begin(), s.h.end());
+  const double grow = 1.1; // h may grow this much within a step before the list misses a pair
+  const double reach = grow * hmax + margin;
+  std::vector<double> pos(s.x);
+  std::vector<std::uint32_t> id(n);
+  for (std::size_t i = 0; i < n; ++i)
+    id[i] = static_cast<std::uint32_t>(i * 32 + kNoShift);
+  for (int sx = -1; sx <= 1; ++sx)
+    for (int sy = -1; sy <= 1; ++sy)
+      for (int sz = -1; sz <= 1; ++sz) {
+        const int shift[3] = {sx, sy, sz};
+        bool ok = sx || sy || sz;
+        for (int k = 0; k < 3 && ok; ++k)
+          ok = shift[k] == 0 || par_.periodic[k];
+        if (!ok)
+          continue;
+        const std::uint32_t code = static_cast<std::uint32_t>((sx + 1) + 3 * (sy + 1) + 9 * (sz + 1));
+        for (std::size_t i = 0; i < n; ++i) {
+          double y[3];
+          bool near = true;
+          for (int k = 0; k < 3 && near; ++k) {
+            y[k] = s.x[3 * i + k] + shift[k] * (par_.boxHi[k] - par_.boxLo[k]);
+            near = !par_.periodic[k] || (y[k] >= par_.boxLo[k] - reach && y[k] <= par_.boxHi[k] + reach);
+          }
+          if (!near)
+            continue;
+          pos.insert(pos.end(), y, y + 3);
+          id.push_back(static_cast<std::uint32_t>(i * 32 + code));
+        }
+      }
+  CellList cells;
+  cells.build(pos.data(), id.size(), reach);
+  std::vector<std::uint32_t> count(n + 1, 0);
+  auto visit = [&](std::size_t a, auto&& take) {
+    const double* xa = &s.x[3 * a];
+    cells.forEachCandidate(xa, reach, [&](std::size_t q) {
+      if (q == a)
+        return;
+      const std::size_t b = id[q] / 32;
+      const double cut = grow * std::max(s.h[a], s.h[b]) + margin;
+      const double* xb = &pos[3 * q];
+      const double r2 = (xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
+                        (xa[2] - xb[2]) * (xa[2] - xb[2]);
+      if (r2 < cut * cut)
+        take(id[q]);
+    });
+  };
+#pragma omp parallel for schedule(dynamic, 512) if (n >= 1024)
+  for (std::size_t a = 0; a < n; ++a) {
+    std::uint32_t c = 0;
+    visit(a, [&](std::uint32_t) { ++c; });
+    count[a + 1] = c;
+  }
+  nb_.start.assign(n + 1, 0);
+  for (std::size_t a = 0; a < n; ++a)
+    nb_.start[a + 1] = nb_.start[a] + count[a + 1];
+  if (nb_.start[n] > 0xF0000000u)
+    throw std::runtime_error("SPH: too many neighbour pairs (the smoothing lengths have grown too large)");
+  nb_.entry.resize(nb_.start[n]);
+#pragma omp parallel for schedule(dynamic, 512) if (n >= 1024)
+  for (std::size_t a = 0; a < n; ++a) {
+    std::uint32_t* out = &nb_.entry[nb_.start[a]];
+    visit(a, [&](std::uint32_t e) { *out++ = e; });
+    // A fixed order of summation, whatever the cell list's visiting order.
+    std::sort(&nb_.entry[nb_.start[a]], out);
+  }
 }
 
-void SphSolver::wrap(SphState& s) const {
+void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>& c) const {
+  const std::size_t n = s.size();
   for (int k = 0; k < 3; ++k) {
     if (!par_.periodic[k])
       continue;
     const double lo = par_.boxLo[k], L = par_.boxHi[k] - lo;
-    for (std::size_t i = 0; i < s.size(); ++i) {
+    for (std::size_t i = 0; i < n; ++i) {
       double& x = s.x[3 * i + k];
       x = lo + (x - lo) - L * std::floor((x - lo) / L);
     }
   }
+  for (std::size_t i = 0; i < n; ++i)
+    s.h[i] = par_.kappa * std::cbrt(s.mass[i] / s.rho[i]);
+  if (par_.summationDensity)
+    densityBySummation(s);
+  eosAndYield(s, p, c);
 }
 
-namespace {
-// Real particles plus, for periodic axes, their images within one support radius of the box,
-// in a cell list.
-struct Neighbourhood {
-  std::vector<double> pos;
-  std::vector<std::size_t> origin;
-  CellList cells;
-  double hmax = 0.0;
-  Neighbourhood(const SphState& s, const SphParams& par) {
-    const std::size_t n = s.size();
-    hmax = *std::max_element(s.h.begin(), s.h.end());
-    pos = s.x;
-    origin.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-      origin[i] = i;
-    for (int sx = -1; sx <= 1; ++sx)
-      for (int sy = -1; sy <= 1; ++sy)
-        for (int sz = -1; sz <= 1; ++sz) {
-          const int shift[3] = {sx, sy, sz};
-          bool ok = sx || sy || sz;
-          for (int k = 0; k < 3 && ok; ++k)
-            ok = shift[k] == 0 || par.periodic[k];
-          if (!ok)
-            continue;
-          for (std::size_t i = 0; i < n; ++i) {
-            double y[3];
-            bool near = true;
-            for (int k = 0; k < 3 && near; ++k) {
-              y[k] = s.x[3 * i + k] + shift[k] * (par.boxHi[k] - par.boxLo[k]);
-              near = y[k] >= par.boxLo[k] - hmax && y[k] <= par.boxHi[k] + hmax;
-            }
-            if (!near)
-              continue;
-            pos.insert(pos.end(), y, y + 3);
-            origin.push_back(i);
-          }
-        }
-    cells.build(pos.data(), origin.size(), hmax);
+void SphSolver::eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c) const {
+  const std::size_t n = s.size();
+  p.resize(n);
+  c.resize(n);
+  std::vector<Rheology> rh;
+  for (const Material& m : par_.materials)
+    rh.emplace_back(m);
+#pragma omp parallel for schedule(static) if (n >= 512)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Material& mat = par_.materials[static_cast<std::size_t>(s.material[i])];
+    const Rheology& r = rh[static_cast<std::size_t>(s.material[i])];
+    const double rho = s.rho[i], u = s.u[i];
+    double& a = s.alpha[i];
+    auto bulkPressure = [&](double al) { return mat.eos.pressure(al * rho, u) / al; };
+    double P = bulkPressure(a);
+    if (a > 1.0 && a > r.crushAlpha(P)) {
+      // Compaction: α is the largest value in [1, α] on or below the crush curve. f(α) =
+      // α − α_crush(P(α)) is ≤ 0 at α = 1 and > 0 here, so bisection finds the crossing.
+      double lo = 1.0, hi = a;
+      for (int it = 0; it < 60 && hi - lo > 1e-12 * hi; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (mid - r.crushAlpha(bulkPressure(mid)) > 0.0 ? hi : lo) = mid;
+      }
+      a = lo;
+      P = bulkPressure(a);
+    }
+    const double D = s.damage[i];
+    if (P < 0.0)
+      P *= 1.0 - D;
+    double* S = &s.S[6 * i];
+    double f = 1.0;
+    const double J2 = 0.5 * dot6(S, S);
+    switch (r.kind) {
+    case Rheology::Fluid:
+      f = 0.0;
+      break;
+    case Rheology::VonMises: {
+      const double Y = (1.0 - D) * r.yield;
+      if (3.0 * J2 > Y * Y)
+        f = Y / std::sqrt(3.0 * J2);
+      break;
+    }
+    case Rheology::DruckerPrager: {
+      // Tension is cut at the cone's apex (p = 0 without cohesion); damage removes cohesion.
+      const double k = (1.0 - D) * r.dpK;
+      if (r.dpB3 > 0.0)
+        P = std::max(P, -k / r.dpB3);
+      else if (P < -k)
+        P = -k;
+      const double Y = std::max(0.0, k + r.dpB3 * P);
+      if (J2 > Y * Y)
+        f = Y / std::sqrt(J2);
+      break;
+    }
+    }
+    if (f < 1.0)
+      for (int k = 0; k < 6; ++k)
+        S[k] *= f;
+    p[i] = P;
+    c[i] = mat.eos.soundSpeed(a * rho, u);
   }
-};
+}
 
-// ρ_a = Σ_b m_b W(r_ab, h̄_ab), the particle itself included.
-template <class K> void summationDensity(SphState& s, const SphParams& par) {
-  const Neighbourhood nb(s, par);
-  std::vector<double> rho(s.size(), 0.0);
-  // One particle per iteration, its own sum: the same result for any thread count.
-#pragma omp parallel for schedule(dynamic, 256) if (s.size() >= 512)
-  for (std::size_t a = 0; a < s.size(); ++a) {
+template <class K> void SphSolver::summation(SphState& s) const {
+  const std::size_t n = s.size();
+  std::vector<double> rho(n);
+#pragma omp parallel for schedule(dynamic, 256) if (n >= 512)
+  for (std::size_t a = 0; a < n; ++a) {
     const double* xa = &s.x[3 * a];
-    double sum = 0.0;
-    nb.cells.forEachCandidate(xa, nb.hmax, [&](std::size_t q) {
-      const std::size_t b = nb.origin[q];
-      const double* xb = &nb.pos[3 * q];
-      const double r = std::sqrt((xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
-                                 (xa[2] - xb[2]) * (xa[2] - xb[2]));
-      sum += s.mass[b] * K::W(r, 0.5 * (s.h[a] + s.h[b]));
-    });
+    double sum = s.mass[a] * K::W(0.0, s.h[a]);
+    for (std::uint32_t e = nb_.start[a]; e < nb_.start[a + 1]; ++e) {
+      const std::uint32_t code = nb_.entry[e];
+      const std::size_t b = code / 32;
+      double d[3] = {0, 0, 0};
+      if (code % 32 != kNoShift)
+        imageShift(code % 32, d);
+      const double* xb = &s.x[3 * b];
+      const double rx = xa[0] - xb[0] - d[0], ry = xa[1] - xb[1] - d[1], rz = xa[2] - xb[2] - d[2];
+      const double hb = 0.5 * (s.h[a] + s.h[b]);
+      const double r2 = rx * rx + ry * ry + rz * rz;
+      if (r2 < hb * hb)
+        sum += s.mass[b] * K::W(std::sqrt(r2), hb);
+    }
     rho[a] = sum;
   }
-  s.rho = rho;
+  s.rho.swap(rho);
+}
+
+void SphSolver::densityBySummation(SphState& s) const {
+  if (par_.kernel == SphParams::Kernel::WendlandC2)
+    summation<WendlandC2>(s);
+  else
+    summation<CubicSpline>(s);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    s.h[i] = par_.kappa * std::cbrt(s.mass[i] / s.rho[i]);
 }
 
 template <class K>
-double rates(const SphState& s, const SphParams& par, const std::vector<double>& p, const std::vector<double>& c,
-             std::vector<double>& dv, std::vector<double>& drho, std::vector<double>& du) {
+double SphSolver::rates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c,
+                        Rates& r) const {
   const std::size_t n = s.size();
-  const Neighbourhood nb(s, par);
-  const double hmax = nb.hmax;
-  const std::vector<double>& pos = nb.pos;
-  const std::vector<std::size_t>& origin = nb.origin;
-  const CellList& cells = nb.cells;
-  dv.assign(3 * n, 0.0);
-  drho.assign(n, 0.0);
-  du.assign(n, 0.0);
+  r.dx.assign(par_.xsph > 0.0 ? 3 * n : 0, 0.0);
+  r.dv.resize(3 * n);
+  r.drho.resize(n);
+  r.du.resize(n);
+  r.dS.resize(6 * n);
+  std::vector<double> G(par_.materials.size());
+  for (std::size_t m = 0; m < G.size(); ++m)
+    G[m] = par_.materials[m].strength == Material::Strength::None ? 0.0 : par_.materials[m].shearModulus;
+  const double* X = s.x.data();
+  const double* V = s.v.data();
+  const double* Sall = s.S.data();
   double maxSignal = 0.0;
   // Each particle accumulates only its own rates (pairs are visited from both sides), so the
   // loop needs no atomics and gives the same bits for any thread count.
 #pragma omp parallel for schedule(dynamic, 256) reduction(max : maxSignal) if (n >= 512)
   for (std::size_t a = 0; a < n; ++a) {
-    const double* xa = &s.x[3 * a];
-    const double* va = &s.v[3 * a];
-    const double pa = p[a] / (s.rho[a] * s.rho[a]);
+    const double* xa = &X[3 * a];
+    const double* va = &V[3 * a];
+    const double* Sa = &Sall[6 * a];
+    const double ra2 = 1.0 / (s.rho[a] * s.rho[a]);
+    const double pa = p[a] * ra2;
+    const double sa[6] = {Sa[0] * ra2, Sa[1] * ra2, Sa[2] * ra2, Sa[3] * ra2, Sa[4] * ra2, Sa[5] * ra2};
+    const bool solid = G[static_cast<std::size_t>(s.material[a])] > 0.0;
     double acc[3] = {0, 0, 0}, dr = 0.0, de = 0.0, signal = c[a];
-    cells.forEachCandidate(xa, hmax, [&](std::size_t q) {
-      const std::size_t b = origin[q];
-      if (q == a)
-        return;
-      const double* xb = &pos[3 * q];
-      const double rx = xa[0] - xb[0], ry = xa[1] - xb[1], rz = xa[2] - xb[2];
+    double grad[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}; // ∂_β v^α at [3α + β]
+    double xs[3] = {0, 0, 0};
+    for (std::uint32_t e = nb_.start[a]; e < nb_.start[a + 1]; ++e) {
+      const std::uint32_t code = nb_.entry[e];
+      const std::size_t b = code / 32;
+      double d[3] = {0, 0, 0};
+      if (code % 32 != kNoShift)
+        imageShift(code % 32, d);
+      const double* xb = &X[3 * b];
+      const double rx = xa[0] - xb[0] - d[0], ry = xa[1] - xb[1] - d[1], rz = xa[2] - xb[2] - d[2];
       const double r2 = rx * rx + ry * ry + rz * rz;
       const double hb = 0.5 * (s.h[a] + s.h[b]);
       if (r2 >= hb * hb || r2 == 0.0)
-        return;
-      const double r = std::sqrt(r2);
-      const double g = K::dWdr(r, hb) / r; // ∇_a W = g r_ab
-      const double* vb = &s.v[3 * b];
+        continue;
+      const double rr = std::sqrt(r2);
+      const double g = K::dWdr(rr, hb) / rr; // ∇_a W = g r_ab
+      const double* vb = &V[3 * b];
       const double vx = va[0] - vb[0], vy = va[1] - vb[1], vz = va[2] - vb[2];
       const double vr = vx * rx + vy * ry + vz * rz;
       double pi = 0.0;
       if (vr < 0.0) {
         const double mu = hb * vr / (r2 + 0.01 * hb * hb); // h̄ = support, as miluphcuda
         const double cbar = 0.5 * (c[a] + c[b]), rhobar = 0.5 * (s.rho[a] + s.rho[b]);
-        pi = (-par.alpha * cbar * mu + par.beta * mu * mu) / rhobar;
-        signal = std::max(signal, c[a] + c[b] - 3.0 * vr / r);
+        pi = (-par_.alpha * cbar * mu + par_.beta * mu * mu) / rhobar;
+        signal = std::max(signal, c[a] + c[b] - 3.0 * vr / rr);
       }
       const double mb = s.mass[b];
-      const double f = mb * (pa + p[b] / (s.rho[b] * s.rho[b]) + pi) * g;
+      const double rb2 = 1.0 / (s.rho[b] * s.rho[b]);
+      const double f = mb * (pa + p[b] * rb2 + pi) * g;
       acc[0] -= f * rx;
       acc[1] -= f * ry;
       acc[2] -= f * rz;
       const double vgrad = vr * g; // v_ab · ∇_a W
       dr += mb * vgrad;
       de += mb * (pa + 0.5 * pi) * vgrad;
-    });
+      const double* Sb = &Sall[6 * b];
+      if (solid || Sb[0] != 0.0 || Sb[1] != 0.0 || Sb[2] != 0.0 || Sb[3] != 0.0 || Sb[4] != 0.0 || Sb[5] != 0.0) {
+        // (S_a/ρ_a² + S_b/ρ_b²) · ∇_a W
+        const double t[6] = {sa[0] + Sb[0] * rb2, sa[1] + Sb[1] * rb2, sa[2] + Sb[2] * rb2,
+                             sa[3] + Sb[3] * rb2, sa[4] + Sb[4] * rb2, sa[5] + Sb[5] * rb2};
+        const double mg = mb * g;
+        acc[0] += mg * (t[0] * rx + t[3] * ry + t[4] * rz);
+        acc[1] += mg * (t[3] * rx + t[1] * ry + t[5] * rz);
+        acc[2] += mg * (t[4] * rx + t[5] * ry + t[2] * rz);
+        // Stress power with the same pair terms as the force, so energy is conserved exactly:
+        // −Σ m_b (S_a/ρ_a²) : (v_ab ⊗ ∇_a W).
+        de -= mg * (sa[0] * vx * rx + sa[1] * vy * ry + sa[2] * vz * rz + sa[3] * (vx * ry + vy * rx) +
+                    sa[4] * (vx * rz + vz * rx) + sa[5] * (vy * rz + vz * ry));
+      }
+      if (solid) {
+        const double w = -mb / s.rho[b] * g; // ∂_β v^α ≈ −Σ (m_b/ρ_b) v_ab^α ∂_β W
+        grad[0] += w * vx * rx, grad[1] += w * vx * ry, grad[2] += w * vx * rz;
+        grad[3] += w * vy * rx, grad[4] += w * vy * ry, grad[5] += w * vy * rz;
+        grad[6] += w * vz * rx, grad[7] += w * vz * ry, grad[8] += w * vz * rz;
+      }
+      if (par_.xsph > 0.0) {
+        const double w = par_.xsph * mb / (0.5 * (s.rho[a] + s.rho[b])) * K::W(rr, hb);
+        xs[0] -= w * vx, xs[1] -= w * vy, xs[2] -= w * vz;
+      }
+    }
+    double ext[3] = {par_.gravity[0], par_.gravity[1], par_.gravity[2]};
+    if (par_.pointMassGM > 0.0) {
+      const double dx = xa[0] - par_.pointMassAt[0], dy = xa[1] - par_.pointMassAt[1], dz = xa[2] - par_.pointMassAt[2];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      if (r2 > 0.0) {
+        const double k = -par_.pointMassGM / (r2 * std::sqrt(r2));
+        ext[0] += k * dx, ext[1] += k * dy, ext[2] += k * dz;
+      }
+    }
     for (int k = 0; k < 3; ++k)
-      dv[3 * a + k] = acc[k] + par.gravity[k];
-    drho[a] = dr;
-    du[a] = de;
+      r.dv[3 * a + k] = acc[k] + ext[k];
+    if (par_.xsph > 0.0)
+      for (int k = 0; k < 3; ++k)
+        r.dx[3 * a + k] = xs[k];
+    r.drho[a] = dr;
+    r.du[a] = de;
+    double* dS = &r.dS[6 * a];
+    if (solid) {
+      const double Gm = G[static_cast<std::size_t>(s.material[a])];
+      // Strain rate ε̇ = sym(∇v), rotation rate R^{αβ} = ½(∂_β v^α − ∂_α v^β).
+      const double exx = grad[0], eyy = grad[4], ezz = grad[8];
+      const double exy = 0.5 * (grad[1] + grad[3]), exz = 0.5 * (grad[2] + grad[6]), eyz = 0.5 * (grad[5] + grad[7]);
+      const double wxy = 0.5 * (grad[1] - grad[3]), wxz = 0.5 * (grad[2] - grad[6]), wyz = 0.5 * (grad[5] - grad[7]);
+      const double tr = (exx + eyy + ezz) / 3.0;
+      // Full tensors for R S − S R (R antisymmetric, S symmetric: the result is symmetric).
+      const double Sm[3][3] = {{Sa[0], Sa[3], Sa[4]}, {Sa[3], Sa[1], Sa[5]}, {Sa[4], Sa[5], Sa[2]}};
+      const double R[3][3] = {{0.0, wxy, wxz}, {-wxy, 0.0, wyz}, {-wxz, -wyz, 0.0}};
+      auto rot = [&](int i, int j) {
+        double v = 0.0;
+        for (int k = 0; k < 3; ++k)
+          v += R[i][k] * Sm[k][j] - Sm[i][k] * R[k][j];
+        return v;
+      };
+      dS[0] = 2.0 * Gm * (exx - tr) + rot(0, 0);
+      dS[1] = 2.0 * Gm * (eyy - tr) + rot(1, 1);
+      dS[2] = 2.0 * Gm * (ezz - tr) + rot(2, 2);
+      dS[3] = 2.0 * Gm * exy + rot(0, 1);
+      dS[4] = 2.0 * Gm * exz + rot(0, 2);
+      dS[5] = 2.0 * Gm * eyz + rot(1, 2);
+    } else {
+      for (int k = 0; k < 6; ++k)
+        dS[k] = 0.0;
+    }
     maxSignal = std::max(maxSignal, signal / (0.5 * s.h[a]));
   }
   return maxSignal;
 }
-} // namespace
 
-double SphSolver::computeRates(const SphState& s, Rates& r, std::vector<double>& p, std::vector<double>& c) const {
-  const std::size_t n = s.size();
-  p.resize(n);
-  c.resize(n);
-#pragma omp parallel for schedule(static) if (n >= 512)
-  for (std::size_t i = 0; i < n; ++i) {
-    const EquationOfState& e = par_.eos[static_cast<std::size_t>(s.material[i])];
-    p[i] = e.pressure(s.rho[i], s.u[i]);
-    c[i] = e.soundSpeed(s.rho[i], s.u[i]);
+double SphSolver::computeRates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c,
+                               Rates& r) const {
+  if (par_.kernel == SphParams::Kernel::WendlandC2)
+    return rates<WendlandC2>(s, p, c, r);
+  return rates<CubicSpline>(s, p, c, r);
+}
+
+double SphSolver::limitStep(const SphState& s, const Rates& r, double maxSignal) const {
+  double dt = maxSignal > 0.0 ? par_.courant / maxSignal : INFINITY;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double a2 = r.dv[3 * i] * r.dv[3 * i] + r.dv[3 * i + 1] * r.dv[3 * i + 1] + r.dv[3 * i + 2] * r.dv[3 * i + 2];
+    if (a2 > 0.0)
+      dt = std::min(dt, par_.forceFactor * std::sqrt(s.h[i] / std::sqrt(a2)));
   }
-  if (par_.kernel == SphParams::Kernel::WendlandC2)
-    return rates<WendlandC2>(s, par_, p, c, r.dv, r.drho, r.du);
-  return rates<CubicSpline>(s, par_, p, c, r.dv, r.drho, r.du);
+  return dt;
 }
-
-void SphSolver::densityBySummation(SphState& s) const {
-  if (par_.kernel == SphParams::Kernel::WendlandC2)
-    summationDensity<WendlandC2>(s, par_);
-  else
-    summationDensity<CubicSpline>(s, par_);
-  updateSmoothing(s);
-}
-
-double SphSolver::courantStep() const { return par_.courant / lastMaxSignal_; }
 
 double SphSolver::step(double dt) {
   if (dt <= 0.0)
-    dt = courantStep();
-  if (!(dt > 0.0) || !std::isfinite(dt))
-    throw std::runtime_error("SPH: the time step collapsed at t = " + std::to_string(time_));
-  Rates k1, k2;
-  std::vector<double> p, c;
-  computeRates(s_, k1, p, c);
-  SphState mid = s_;
+    dt = stableStep_;
+  if (!(dt > 0.0) || !std::isfinite(dt) || dt < par_.minTimeStep) {
+    // Name the particle that sets the step, so a user can see where the run broke down.
+    std::size_t worst = 0;
+    double worstH = INFINITY;
+    for (std::size_t i = 0; i < s_.size(); ++i)
+      if (c_[i] > 0.0 && s_.h[i] / c_[i] < worstH)
+        worstH = s_.h[i] / c_[i], worst = i;
+    throw std::runtime_error("SPH: the time step collapsed to " + std::to_string(dt) + " s at t = " +
+                             std::to_string(time_) + " s near particle " + std::to_string(worst) + " (x = " +
+                             std::to_string(s_.x[3 * worst]) + ", " + std::to_string(s_.x[3 * worst + 1]) + ", " +
+                             std::to_string(s_.x[3 * worst + 2]) + ")");
+  }
   const std::size_t n = s_.size();
+  double vmax = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double v2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double w = s_.v[3 * i + k] + (k1_.dx.empty() ? 0.0 : k1_.dx[3 * i + k]);
+      v2 += w * w;
+    }
+    vmax = std::max(vmax, v2);
+  }
+  // Two particles approach each other by at most 2 dt vmax, plus what the velocity gains.
+  buildNeighbours(s_, 2.0 * dt * std::sqrt(vmax) * 1.5);
+  const bool xs = par_.xsph > 0.0;
+  SphState mid = s_;
   for (std::size_t i = 0; i < 3 * n; ++i) {
-    mid.x[i] += dt * s_.v[i];
-    mid.v[i] += dt * k1.dv[i];
+    mid.x[i] += dt * (s_.v[i] + (xs ? k1_.dx[i] : 0.0));
+    mid.v[i] += dt * k1_.dv[i];
   }
   for (std::size_t i = 0; i < n; ++i) {
-    mid.rho[i] += dt * k1.drho[i];
-    mid.u[i] = std::max(0.0, mid.u[i] + dt * k1.du[i]);
+    if (!par_.summationDensity)
+      mid.rho[i] = std::max(1e-6 * s_.rho[i], mid.rho[i] + dt * k1_.drho[i]);
+    mid.u[i] = std::max(0.0, mid.u[i] + dt * k1_.du[i]);
   }
-  settle(mid);
-  computeRates(mid, k2, p, c);
+  for (std::size_t i = 0; i < 6 * n; ++i)
+    mid.S[i] += dt * k1_.dS[i];
+  std::vector<double> pm, cm;
+  settle(mid, pm, cm);
+  Rates k2;
+  computeRates(mid, pm, cm, k2);
   for (std::size_t i = 0; i < 3 * n; ++i) {
-    s_.x[i] += 0.5 * dt * (s_.v[i] + mid.v[i]); // before v is updated below
-    s_.v[i] += 0.5 * dt * (k1.dv[i] + k2.dv[i]);
+    s_.x[i] += 0.5 * dt * (s_.v[i] + mid.v[i] + (xs ? k1_.dx[i] + k2.dx[i] : 0.0)); // before v changes
+    s_.v[i] += 0.5 * dt * (k1_.dv[i] + k2.dv[i]);
   }
   for (std::size_t i = 0; i < n; ++i) {
-    s_.rho[i] += 0.5 * dt * (k1.drho[i] + k2.drho[i]);
-    s_.u[i] = std::max(0.0, s_.u[i] + 0.5 * dt * (k1.du[i] + k2.du[i]));
-    if (!(s_.rho[i] > 0.0) || !std::isfinite(s_.rho[i]))
-      throw std::runtime_error("SPH: particle " + std::to_string(i) + " has a non-positive density at t = " +
-                               std::to_string(time_ + dt));
+    if (!par_.summationDensity)
+      s_.rho[i] += 0.5 * dt * (k1_.drho[i] + k2.drho[i]);
+    s_.u[i] = std::max(0.0, s_.u[i] + 0.5 * dt * (k1_.du[i] + k2.du[i]));
+    s_.alpha[i] = mid.alpha[i]; // compaction is kept from the predictor and can go on below
+    if (!(s_.rho[i] > 0.0) || !std::isfinite(s_.rho[i]) || !std::isfinite(s_.u[i]))
+      throw std::runtime_error("SPH: particle " + std::to_string(i) + " has a non-positive or non-finite density or energy at t = " +
+                               std::to_string(time_ + dt) + " s");
   }
-  settle(s_);
-  Rates r;
-  lastMaxSignal_ = computeRates(s_, r, p_, cs_);
+  for (std::size_t i = 0; i < 6 * n; ++i)
+    s_.S[i] += 0.5 * dt * (k1_.dS[i] + k2.dS[i]);
+  settle(s_, p_, c_);
+  const double signal = computeRates(s_, p_, c_, k1_);
+  stableStep_ = limitStep(s_, k1_, signal);
   time_ += dt;
+  ++steps_;
   return dt;
 }
 
 void SphSolver::advanceTo(double t) {
   while (time_ < t) {
-    const double dt = std::min(courantStep(), t - time_);
+    const double dt = std::min(stableStep_, t - time_);
     step(dt);
   }
 }
 
-double SphSolver::totalEnergy() const {
+double SphSolver::kineticEnergy() const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < s_.size(); ++i)
+    e += 0.5 * s_.mass[i] *
+         (s_.v[3 * i] * s_.v[3 * i] + s_.v[3 * i + 1] * s_.v[3 * i + 1] + s_.v[3 * i + 2] * s_.v[3 * i + 2]);
+  return e;
+}
+
+double SphSolver::internalEnergy() const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < s_.size(); ++i)
+    e += s_.mass[i] * s_.u[i];
+  return e;
+}
+
+double SphSolver::potentialEnergy() const {
   double e = 0.0;
   for (std::size_t i = 0; i < s_.size(); ++i) {
-    const double v2 = s_.v[3 * i] * s_.v[3 * i] + s_.v[3 * i + 1] * s_.v[3 * i + 1] + s_.v[3 * i + 2] * s_.v[3 * i + 2];
-    e += s_.mass[i] * (0.5 * v2 + s_.u[i]);
+    const double* x = &s_.x[3 * i];
+    e -= s_.mass[i] * (par_.gravity[0] * x[0] + par_.gravity[1] * x[1] + par_.gravity[2] * x[2]);
+    if (par_.pointMassGM > 0.0) {
+      const double dx = x[0] - par_.pointMassAt[0], dy = x[1] - par_.pointMassAt[1], dz = x[2] - par_.pointMassAt[2];
+      e -= s_.mass[i] * par_.pointMassGM / std::sqrt(dx * dx + dy * dy + dz * dz);
+    }
   }
   return e;
 }
@@ -290,6 +602,18 @@ void SphSolver::totalMomentum(double p[3]) const {
   for (std::size_t i = 0; i < s_.size(); ++i)
     for (int k = 0; k < 3; ++k)
       p[k] += s_.mass[i] * s_.v[3 * i + k];
+}
+
+void SphSolver::totalAngularMomentum(double L[3]) const {
+  L[0] = L[1] = L[2] = 0.0;
+  for (std::size_t i = 0; i < s_.size(); ++i) {
+    const double* x = &s_.x[3 * i];
+    const double* v = &s_.v[3 * i];
+    const double m = s_.mass[i];
+    L[0] += m * (x[1] * v[2] - x[2] * v[1]);
+    L[1] += m * (x[2] * v[0] - x[0] * v[2]);
+    L[2] += m * (x[0] * v[1] - x[1] * v[0]);
+  }
 }
 
 } // namespace craterkit

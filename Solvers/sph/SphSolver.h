@@ -1,41 +1,56 @@
-// The SPH solver for the shock stage (PHYSICS.md §2): first piece, the hydrodynamic core.
+// The SPH solver for the shock and excavation stage (PHYSICS.md §2).
 //
-// Continuity (integrated density), momentum and energy in the symmetric forms of §2.2 with
-// Monaghan artificial viscosity (§2.3), a choice of kernel, smoothing length following the
-// density (h = κ (m/ρ)^{1/3}, support h), equations of state by material, periodic or open
-// boundaries, uniform gravity, and Heun's predictor–corrector (RK2) with a Courant time step.
-// Neighbours come from a cell list rebuilt at every force evaluation; periodic axes use ghost
-// copies of the particles within one support radius of a face. OpenMP over particles, the
-// same bits for any thread count.
+// Continuity (integrated or summation density), momentum with the full stress tensor and
+// energy in the symmetric forms of §2.2; Monaghan artificial viscosity (§2.3) and optional XSPH;
+// deviatoric stress from Hooke's law with the Jaumann rate; strength: von Mises for metals,
+// Drucker–Prager matched to the Mohr–Coulomb compression cone for granular material (§2.5);
+// P–α porosity with the quadratic crush curve (§2.6); a damage field D that weakens tension
+// and shear (set initially; its Grady–Kipp growth is not modelled yet); equations of state by
+// material; smoothing length following the density (h = κ (m/ρ)^{1/3}, support h); periodic or
+// open boundaries; uniform or point-mass gravity; Heun's predictor–corrector (RK2) with the
+// Courant and force time steps.
 //
-// Not yet here (issue 4 continues): deviatoric stress and strength, porosity, damage, variable
-// h with ∇h terms, checkpoints.
+// Neighbours: one list per step, built from a cell list with a margin for the motion and
+// the growth of h during the step, used by both stages (and the first stage of the next step,
+// whose rates are those of the end of this one). Periodic axes are handled by storing, with
+// each neighbour, which image of it is near. OpenMP over particles; each particle sums only
+// its own rates, so results are the same bits for any thread count.
 #pragma once
 
-#include "sph/Eos.h"
+#include "sph/Material.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace craterkit {
 
 struct SphState {
-  std::vector<double> x, v;           // 3 per particle
-  std::vector<double> mass, rho, u, h; // kg, kg/m³, J/kg, m (support radius)
+  std::vector<double> x, v;            // 3 per particle
+  std::vector<double> mass, rho, u, h; // kg, bulk density kg/m³, J/kg, m (support radius)
+  std::vector<double> S;               // deviatoric stress, 6 per particle: xx yy zz xy xz yz (Pa)
+  std::vector<double> alpha;           // distention ρ_matrix/ρ (1: no pores)
+  std::vector<double> damage;          // D in [0, 1]
   std::vector<int> material;
   std::size_t size() const { return mass.size(); }
+  // A particle at rest in stress, with no pores and no damage.
   void add(const double pos[3], const double vel[3], double m, double density, double energy, int mat);
 };
 
 struct SphParams {
   enum class Kernel { CubicSpline, WendlandC2 } kernel = Kernel::CubicSpline;
-  std::vector<EquationOfState> eos; // one per material index
+  std::vector<Material> materials; // indexed by SphState::material
   double alpha = 1.0, beta = 2.0;  // artificial viscosity
-  double kappa = 2.5;               // h = κ (m/ρ)^{1/3}
+  double xsph = 0.0;               // XSPH ε (0: off)
+  double kappa = 2.5;              // h = κ (m/ρ)^{1/3}
   double courant = 0.3;
-  bool summationDensity = false;    // ρ = Σ m W (gases) instead of the integrated continuity equation
-  double gravity[3] = {0, 0, 0};
+  double forceFactor = 0.2;        // Δt ≤ forceFactor sqrt(h / |a|)
+  double minTimeStep = 0.0;        // a step below this stops the run (0: only a non-positive step)
+  bool summationDensity = false;   // ρ = Σ m W (gases) instead of the integrated continuity equation
+  double gravity[3] = {0, 0, 0};   // uniform, m/s²
+  double pointMassGM = 0.0;        // m³/s², a point mass at pointMassAt (0: none)
+  double pointMassAt[3] = {0, 0, 0};
   bool periodic[3] = {false, false, false};
   double boxLo[3] = {0, 0, 0}, boxHi[3] = {1, 1, 1}; // the periodic cell
   void validate() const;
@@ -44,33 +59,54 @@ struct SphParams {
 class SphSolver {
 public:
   SphSolver(const SphState& initial, const SphParams& params);
-  // One Heun step of size dt (0: the Courant step).
+  // One Heun step of size dt (0: the stable step).
   double step(double dt = 0.0);
   void advanceTo(double t);
   double time() const { return time_; }
+  void setTime(double t) { time_ = t; }
+  std::size_t steps() const { return steps_; }
   const SphState& state() const { return s_; }
+  const SphParams& params() const { return par_; }
   const std::vector<double>& pressure() const { return p_; }
-  double courantStep() const;
-  double totalEnergy() const; // kinetic + internal
+  const std::vector<double>& soundSpeed() const { return c_; }
+  double stableStep() const { return stableStep_; }
+  double kineticEnergy() const;
+  double internalEnergy() const;
+  double potentialEnergy() const; // in the uniform field and the point mass
+  double totalEnergy() const { return kineticEnergy() + internalEnergy() + potentialEnergy(); }
   void totalMomentum(double p[3]) const;
+  void totalAngularMomentum(double L[3]) const; // about the origin
 
 private:
   struct Rates {
-    std::vector<double> dv, drho, du; // dx/dt is the state's own velocity
+    std::vector<double> dx, dv, drho, du, dS, dalpha;
   };
-  // Rates of state s; fills pressure and sound speed of s into p, c; returns the largest
-  // signal speed over h (for the time step).
-  double computeRates(const SphState& s, Rates& r, std::vector<double>& p, std::vector<double>& c) const;
-  void updateSmoothing(SphState& s) const;
+  struct Neighbours {
+    std::vector<std::uint32_t> start; // CSR offsets, size n+1
+    std::vector<std::uint32_t> entry; // neighbour index * 32 + periodic image code
+  };
+  void buildNeighbours(const SphState& s, double margin);
+  // Positions into the periodic box, h from ρ, ρ by summation when asked, then pressure and
+  // sound speed into p and c and the yield limit on the deviatoric stress.
+  void settle(SphState& s, std::vector<double>& p, std::vector<double>& c) const;
+  void eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c) const;
   void densityBySummation(SphState& s) const;
-  void wrap(SphState& s) const;
-  // After a position update: positions into the periodic box, h from ρ, and ρ by summation
-  // when asked.
-  void settle(SphState& s) const;
+  // Rates of s; returns the largest signal speed over h/2.
+  double computeRates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c,
+                      Rates& r) const;
+  template <class K>
+  double rates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c, Rates& r) const;
+  template <class K> void summation(SphState& s) const;
+  double limitStep(const SphState& s, const Rates& r, double maxSignal) const;
+  void imageShift(std::uint32_t code, double d[3]) const;
+
   SphState s_;
   SphParams par_;
-  std::vector<double> p_, cs_; // pressure and sound speed of the current state
-  double time_ = 0.0, lastMaxSignal_ = 0.0;
+  Neighbours nb_;
+  Rates k1_;                   // rates of the current state
+  std::vector<double> p_, c_;  // pressure and sound speed of the current state
+  double time_ = 0.0, stableStep_ = 0.0;
+  std::size_t steps_ = 0;
 };
 
 } // namespace craterkit

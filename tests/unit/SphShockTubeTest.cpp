@@ -111,7 +111,7 @@ TEST(SphShockTube, SodProfilesMatchTheExactRiemannSolution) {
   EquationOfState gas;
   gas.model = EquationOfState::Model::IdealGas;
   gas.gamma = gamma;
-  par.eos = {gas};
+  par.materials = {fluidMaterial(gas)};
   par.summationDensity = true;
   par.kappa = 3.5;
   for (int k = 0; k < 3; ++k)
@@ -181,7 +181,7 @@ TEST(SphSolver, ThreadCountDoesNotChangeTheResult) {
   EquationOfState gas;
   gas.model = EquationOfState::Model::IdealGas;
   gas.gamma = gamma;
-  par.eos = {gas};
+  par.materials = {fluidMaterial(gas)};
   par.summationDensity = true;
   for (int k = 0; k < 3; ++k)
     par.periodic[k] = true;
