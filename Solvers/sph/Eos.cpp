@@ -18,7 +18,9 @@ double tillotsonExpanded(const TillotsonParams& t, double rho, double u) {
          (t.b * rho * u / (1.0 + u / (t.E0 * eta * eta)) + t.A * chi * std::exp(-t.beta * z)) *
              std::exp(-t.alpha * z * z);
 }
-double tillotsonPressure(const TillotsonParams& t, double rho, double u) {
+bool inColdCut(const TillotsonParams& t, double rho, double u) { return rho / t.rho0 < t.rhoLimit && u < t.Ecv; }
+
+double tillotsonPressure(const TillotsonParams& t, double rho, double u, bool cut = true) {
   const double eta = rho / t.rho0;
   double p;
   if (rho >= t.rho0 || u <= t.Eiv) {
@@ -29,7 +31,7 @@ double tillotsonPressure(const TillotsonParams& t, double rho, double u) {
     p = (tillotsonCompressed(t, rho, u) * (t.Ecv - u) + tillotsonExpanded(t, rho, u) * (u - t.Eiv)) /
         (t.Ecv - t.Eiv);
   }
-  if (eta < t.rhoLimit && u < t.Ecv)
+  if (cut && eta < t.rhoLimit && u < t.Ecv)
     p = 0.0;
   return p;
 }
@@ -57,11 +59,17 @@ double EquationOfState::soundSpeed(double rho, double u) const {
     c2 = murnaghanK0 / murnaghanRho0 * std::pow(rho / murnaghanRho0, murnaghanN - 1.0);
     break;
   case Model::Tillotson: {
-    // Central differences (the branches are continuous; a one-sided step at ρ0 is harmless).
-    const double dr = 1e-6 * rho, du = 1e-6 * std::max(u, tillotson.E0 * 1e-3);
-    const double p = pressure(rho, u);
-    const double dpdr = (pressure(rho + dr, u) - pressure(rho - dr, u)) / (2.0 * dr);
-    const double dpdu = (pressure(rho, u + du) - pressure(rho, std::max(0.0, u - du))) / (u > du ? 2.0 * du : du + u);
+    // In the cold expanded region the pressure is held at 0: no stiffness (the floor applies).
+    if (inColdCut(tillotson, rho, u))
+      break;
+    // Central differences of the formula without that cut, so that a state next to the cut's
+    // edge (where p jumps) does not see the jump as an enormous stiffness.
+    const TillotsonParams& t = tillotson;
+    const double dr = 1e-6 * rho, du = 1e-6 * std::max(u, t.E0 * 1e-3);
+    const double p = tillotsonPressure(t, rho, u, false);
+    const double dpdr = (tillotsonPressure(t, rho + dr, u, false) - tillotsonPressure(t, rho - dr, u, false)) / (2.0 * dr);
+    const double dpdu = (tillotsonPressure(t, rho, u + du, false) - tillotsonPressure(t, rho, std::max(0.0, u - du), false)) /
+                        (u > du ? 2.0 * du : du + u);
     c2 = dpdr + p / (rho * rho) * dpdu;
     break;
   }

@@ -39,6 +39,8 @@ void SphParams::validate() const {
     throw InputError("SPH: the Courant number must be in (0, 1]");
   if (!(forceFactor > 0.0 && forceFactor <= 1.0))
     throw InputError("SPH: the force time-step factor must be in (0, 1]");
+  if (!(errorTolerance > 0.0 && errorTolerance <= 1.0))
+    throw InputError("SPH: the error tolerance must be in (0, 1]");
   if (!(minTimeStep >= 0.0))
     throw InputError("SPH: the time-step floor must not be negative");
   for (int k = 0; k < 3; ++k) {
@@ -157,11 +159,39 @@ void SphSolver::imageShift(std::uint32_t code, double d[3]) const {
     d[k] = sh[k] * (par_.boxHi[k] - par_.boxLo[k]);
 }
 
+bool SphSolver::neighboursValid(const SphState& s, double extra) const {
+  // Valid while no pair can have come within its interaction range without being listed:
+  // two particles close in by at most the sum of their displacements since the build (plus
+  // `extra`, the motion still to come in this step), and no h has grown past the allowance.
+  if (nb_.x.size() != s.x.size())
+    return false;
+  double d2max = 0.0;
+  bool hOk = true;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    double d2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      double d = s.x[3 * i + k] - nb_.x[3 * i + k];
+      if (par_.periodic[k]) {
+        const double L = par_.boxHi[k] - par_.boxLo[k];
+        d -= L * std::round(d / L);
+      }
+      d2 += d * d;
+    }
+    d2max = std::max(d2max, d2);
+    hOk = hOk && s.h[i] <= 0.98 * nb_.grow * nb_.h[i]; // room for the growth within this step
+  }
+  return hOk && 2.0 * (std::sqrt(d2max) + extra) < nb_.margin;
+}
+
 void SphSolver::buildNeighbours(const SphState& s, double margin) {
   const std::size_t n = s.size();
   const double hmax = *std::max_element(s.h.begin(), s.h.end());
-  const double grow = 1.1; // h may grow this much within a step before the list misses a pair
+  const double grow = 1.05; // h may grow this much before the list misses a pair
   const double reach = grow * hmax + margin;
+  nb_.x = s.x;
+  nb_.h = s.h;
+  nb_.margin = margin;
+  nb_.grow = grow;
   std::vector<double> pos(s.x);
   std::vector<std::uint32_t> id(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -221,9 +251,7 @@ void SphSolver::buildNeighbours(const SphState& s, double margin) {
 #pragma omp parallel for schedule(dynamic, 512) if (n >= 1024)
   for (std::size_t a = 0; a < n; ++a) {
     std::uint32_t* out = &nb_.entry[nb_.start[a]];
-    visit(a, [&](std::uint32_t e) { *out++ = e; });
-    // A fixed order of summation, whatever the cell list's visiting order.
-    std::sort(&nb_.entry[nb_.start[a]], out);
+    visit(a, [&](std::uint32_t e) { *out++ = e; }); // the cell list's order: the same for any thread count
   }
 }
 
@@ -304,7 +332,10 @@ void SphSolver::eosAndYield(SphState& s, std::vector<double>& p, std::vector<dou
       for (int k = 0; k < 6; ++k)
         S[k] *= f;
     p[i] = P;
-    c[i] = mat.eos.soundSpeed(a * rho, u);
+    // Solids carry shear waves too: the signal speed is the longitudinal one, c² = c_s² + 4G/(3ρ),
+    // or the time step is too long for a stiff solid (and much too long for a porous one).
+    const double cs = mat.eos.soundSpeed(a * rho, u);
+    c[i] = r.kind == Rheology::Fluid ? cs : std::sqrt(cs * cs + 4.0 * r.G / (3.0 * rho));
   }
 }
 
@@ -342,6 +373,18 @@ void SphSolver::densityBySummation(SphState& s) const {
     s.h[i] = par_.kappa * std::cbrt(s.mass[i] / s.rho[i]);
 }
 
+namespace {
+// What a particle's neighbours read of it, packed in one place (two cache lines) instead of
+// eight scattered arrays.
+struct alignas(64) Packed {
+  double x[3], v[3];
+  double h, rho, m, vol; // vol = m/ρ
+  double pr;             // p/ρ²
+  double c;
+  double s[6];           // S/ρ²
+};
+} // namespace
+
 template <class K>
 double SphSolver::rates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c,
                         Rates& r) const {
@@ -354,82 +397,94 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
   std::vector<double> G(par_.materials.size());
   for (std::size_t m = 0; m < G.size(); ++m)
     G[m] = par_.materials[m].strength == Material::Strength::None ? 0.0 : par_.materials[m].shearModulus;
-  const double* X = s.x.data();
-  const double* V = s.v.data();
-  const double* Sall = s.S.data();
+  std::vector<Packed> P(n);
+  bool anyStress = false;
+#pragma omp parallel for schedule(static) reduction(|| : anyStress) if (n >= 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    Packed& q = P[i];
+    const double ir2 = 1.0 / (s.rho[i] * s.rho[i]);
+    for (int k = 0; k < 3; ++k)
+      q.x[k] = s.x[3 * i + k], q.v[k] = s.v[3 * i + k];
+    q.h = s.h[i], q.rho = s.rho[i], q.m = s.mass[i], q.vol = s.mass[i] / s.rho[i];
+    q.pr = p[i] * ir2;
+    q.c = c[i];
+    for (int k = 0; k < 6; ++k) {
+      q.s[k] = s.S[6 * i + k] * ir2;
+      anyStress = anyStress || q.s[k] != 0.0;
+    }
+    anyStress = anyStress || G[static_cast<std::size_t>(s.material[i])] > 0.0;
+  }
+  const Packed* Pp = P.data();
+  const bool periodic = par_.periodic[0] || par_.periodic[1] || par_.periodic[2];
+  const double av = par_.alpha, bv = par_.beta, xsph = par_.xsph;
   double maxSignal = 0.0;
   // Each particle accumulates only its own rates (pairs are visited from both sides), so the
   // loop needs no atomics and gives the same bits for any thread count.
 #pragma omp parallel for schedule(dynamic, 256) reduction(max : maxSignal) if (n >= 512)
   for (std::size_t a = 0; a < n; ++a) {
-    const double* xa = &X[3 * a];
-    const double* va = &V[3 * a];
-    const double* Sa = &Sall[6 * a];
-    const double ra2 = 1.0 / (s.rho[a] * s.rho[a]);
-    const double pa = p[a] * ra2;
-    const double sa[6] = {Sa[0] * ra2, Sa[1] * ra2, Sa[2] * ra2, Sa[3] * ra2, Sa[4] * ra2, Sa[5] * ra2};
+    const Packed& A = Pp[a];
+    const double* sa = A.s;
     const bool solid = G[static_cast<std::size_t>(s.material[a])] > 0.0;
-    double acc[3] = {0, 0, 0}, dr = 0.0, de = 0.0, signal = c[a];
+    double acc[3] = {0, 0, 0}, dr = 0.0, de = 0.0, signal = A.c;
     double grad[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}; // ∂_β v^α at [3α + β]
     double xs[3] = {0, 0, 0};
-    for (std::uint32_t e = nb_.start[a]; e < nb_.start[a + 1]; ++e) {
-      const std::uint32_t code = nb_.entry[e];
-      const std::size_t b = code / 32;
-      double d[3] = {0, 0, 0};
-      if (code % 32 != kNoShift)
-        imageShift(code % 32, d);
-      const double* xb = &X[3 * b];
-      const double rx = xa[0] - xb[0] - d[0], ry = xa[1] - xb[1] - d[1], rz = xa[2] - xb[2] - d[2];
+    const std::uint32_t* e = nb_.entry.data() + nb_.start[a];
+    const std::uint32_t* eEnd = nb_.entry.data() + nb_.start[a + 1];
+    for (; e < eEnd; ++e) {
+      const std::uint32_t code = *e;
+      const Packed& B = Pp[code >> 5];
+      double rx = A.x[0] - B.x[0], ry = A.x[1] - B.x[1], rz = A.x[2] - B.x[2];
+      if (periodic && (code & 31u) != kNoShift) {
+        double d[3];
+        imageShift(code & 31u, d);
+        rx -= d[0], ry -= d[1], rz -= d[2];
+      }
       const double r2 = rx * rx + ry * ry + rz * rz;
-      const double hb = 0.5 * (s.h[a] + s.h[b]);
+      const double hb = 0.5 * (A.h + B.h);
       if (r2 >= hb * hb || r2 == 0.0)
         continue;
       const double rr = std::sqrt(r2);
       const double g = K::dWdr(rr, hb) / rr; // ∇_a W = g r_ab
-      const double* vb = &V[3 * b];
-      const double vx = va[0] - vb[0], vy = va[1] - vb[1], vz = va[2] - vb[2];
+      const double vx = A.v[0] - B.v[0], vy = A.v[1] - B.v[1], vz = A.v[2] - B.v[2];
       const double vr = vx * rx + vy * ry + vz * rz;
       double pi = 0.0;
       if (vr < 0.0) {
         const double mu = hb * vr / (r2 + 0.01 * hb * hb); // h̄ = support, as miluphcuda
-        const double cbar = 0.5 * (c[a] + c[b]), rhobar = 0.5 * (s.rho[a] + s.rho[b]);
-        pi = (-par_.alpha * cbar * mu + par_.beta * mu * mu) / rhobar;
-        signal = std::max(signal, c[a] + c[b] - 3.0 * vr / rr);
+        pi = (-av * 0.5 * (A.c + B.c) * mu + bv * mu * mu) / (0.5 * (A.rho + B.rho));
+        signal = std::max(signal, A.c + B.c - 3.0 * vr / rr);
       }
-      const double mb = s.mass[b];
-      const double rb2 = 1.0 / (s.rho[b] * s.rho[b]);
-      const double f = mb * (pa + p[b] * rb2 + pi) * g;
+      const double mg = B.m * g;
+      const double f = mg * (A.pr + B.pr + pi);
       acc[0] -= f * rx;
       acc[1] -= f * ry;
       acc[2] -= f * rz;
-      const double vgrad = vr * g; // v_ab · ∇_a W
-      dr += mb * vgrad;
-      de += mb * (pa + 0.5 * pi) * vgrad;
-      const double* Sb = &Sall[6 * b];
-      if (solid || Sb[0] != 0.0 || Sb[1] != 0.0 || Sb[2] != 0.0 || Sb[3] != 0.0 || Sb[4] != 0.0 || Sb[5] != 0.0) {
-        // (S_a/ρ_a² + S_b/ρ_b²) · ∇_a W
-        const double t[6] = {sa[0] + Sb[0] * rb2, sa[1] + Sb[1] * rb2, sa[2] + Sb[2] * rb2,
-                             sa[3] + Sb[3] * rb2, sa[4] + Sb[4] * rb2, sa[5] + Sb[5] * rb2};
-        const double mg = mb * g;
-        acc[0] += mg * (t[0] * rx + t[3] * ry + t[4] * rz);
-        acc[1] += mg * (t[3] * rx + t[1] * ry + t[5] * rz);
-        acc[2] += mg * (t[4] * rx + t[5] * ry + t[2] * rz);
-        // Stress power with the same pair terms as the force, so energy is conserved exactly:
-        // −Σ m_b (S_a/ρ_a²) : (v_ab ⊗ ∇_a W).
+      dr += mg * vr;                      // m_b v_ab · ∇_a W
+      de += mg * (A.pr + 0.5 * pi) * vr;
+      if (anyStress) {
+        // (S_a/ρ_a² + S_b/ρ_b²) · ∇_a W, and the stress power with the same pair terms so that
+        // energy is conserved exactly: −Σ m_b (S_a/ρ_a²) : (v_ab ⊗ ∇_a W).
+        const double t0 = sa[0] + B.s[0], t1 = sa[1] + B.s[1], t2 = sa[2] + B.s[2];
+        const double t3 = sa[3] + B.s[3], t4 = sa[4] + B.s[4], t5 = sa[5] + B.s[5];
+        acc[0] += mg * (t0 * rx + t3 * ry + t4 * rz);
+        acc[1] += mg * (t3 * rx + t1 * ry + t5 * rz);
+        acc[2] += mg * (t4 * rx + t5 * ry + t2 * rz);
         de -= mg * (sa[0] * vx * rx + sa[1] * vy * ry + sa[2] * vz * rz + sa[3] * (vx * ry + vy * rx) +
                     sa[4] * (vx * rz + vz * rx) + sa[5] * (vy * rz + vz * ry));
       }
       if (solid) {
-        const double w = -mb / s.rho[b] * g; // ∂_β v^α ≈ −Σ (m_b/ρ_b) v_ab^α ∂_β W
-        grad[0] += w * vx * rx, grad[1] += w * vx * ry, grad[2] += w * vx * rz;
-        grad[3] += w * vy * rx, grad[4] += w * vy * ry, grad[5] += w * vy * rz;
-        grad[6] += w * vz * rx, grad[7] += w * vz * ry, grad[8] += w * vz * rz;
+        const double w = -B.vol * g; // ∂_β v^α ≈ −Σ (m_b/ρ_b) v_ab^α ∂_β W
+        const double wx = w * vx, wy = w * vy, wz = w * vz;
+        grad[0] += wx * rx, grad[1] += wx * ry, grad[2] += wx * rz;
+        grad[3] += wy * rx, grad[4] += wy * ry, grad[5] += wy * rz;
+        grad[6] += wz * rx, grad[7] += wz * ry, grad[8] += wz * rz;
       }
-      if (par_.xsph > 0.0) {
-        const double w = par_.xsph * mb / (0.5 * (s.rho[a] + s.rho[b])) * K::W(rr, hb);
+      if (xsph > 0.0) {
+        const double w = xsph * B.m / (0.5 * (A.rho + B.rho)) * K::W(rr, hb);
         xs[0] -= w * vx, xs[1] -= w * vy, xs[2] -= w * vz;
       }
     }
+    const double* xa = A.x;
+    const double* Sa = &s.S[6 * a];
     double ext[3] = {par_.gravity[0], par_.gravity[1], par_.gravity[2]};
     if (par_.pointMassGM > 0.0) {
       const double dx = xa[0] - par_.pointMassAt[0], dy = xa[1] - par_.pointMassAt[1], dz = xa[2] - par_.pointMassAt[2];
@@ -498,47 +553,73 @@ double SphSolver::limitStep(const SphState& s, const Rates& r, double maxSignal)
 double SphSolver::step(double dt) {
   if (dt <= 0.0)
     dt = stableStep_;
-  if (!(dt > 0.0) || !std::isfinite(dt) || dt < par_.minTimeStep) {
-    // Name the particle that sets the step, so a user can see where the run broke down.
-    std::size_t worst = 0;
-    double worstH = INFINITY;
-    for (std::size_t i = 0; i < s_.size(); ++i)
-      if (c_[i] > 0.0 && s_.h[i] / c_[i] < worstH)
-        worstH = s_.h[i] / c_[i], worst = i;
-    throw std::runtime_error("SPH: the time step collapsed to " + std::to_string(dt) + " s at t = " +
-                             std::to_string(time_) + " s near particle " + std::to_string(worst) + " (x = " +
-                             std::to_string(s_.x[3 * worst]) + ", " + std::to_string(s_.x[3 * worst + 1]) + ", " +
-                             std::to_string(s_.x[3 * worst + 2]) + ")");
-  }
   const std::size_t n = s_.size();
+  const bool xs = par_.xsph > 0.0;
   double vmax = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     double v2 = 0.0;
     for (int k = 0; k < 3; ++k) {
-      const double w = s_.v[3 * i + k] + (k1_.dx.empty() ? 0.0 : k1_.dx[3 * i + k]);
+      const double w = s_.v[3 * i + k] + (xs ? k1_.dx[3 * i + k] : 0.0);
       v2 += w * w;
     }
     vmax = std::max(vmax, v2);
   }
-  // Two particles approach each other by at most 2 dt vmax, plus what the velocity gains.
-  buildNeighbours(s_, 2.0 * dt * std::sqrt(vmax) * 1.5);
-  const bool xs = par_.xsph > 0.0;
-  SphState mid = s_;
-  for (std::size_t i = 0; i < 3 * n; ++i) {
-    mid.x[i] += dt * (s_.v[i] + (xs ? k1_.dx[i] : 0.0));
-    mid.v[i] += dt * k1_.dv[i];
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!par_.summationDensity)
-      mid.rho[i] = std::max(1e-6 * s_.rho[i], mid.rho[i] + dt * k1_.drho[i]);
-    mid.u[i] = std::max(0.0, mid.u[i] + dt * k1_.du[i]);
-  }
-  for (std::size_t i = 0; i < 6 * n; ++i)
-    mid.S[i] += dt * k1_.dS[i];
-  std::vector<double> pm, cm;
-  settle(mid, pm, cm);
+  vmax = std::sqrt(vmax);
+  SphState mid;
   Rates k2;
-  computeRates(mid, pm, cm, k2);
+  std::vector<double> pm, cm;
+  double err = 0.0;
+  std::size_t worst = 0;
+  for (int attempt = 0;; ++attempt) {
+    if (!(dt > 0.0) || !std::isfinite(dt) || dt < par_.minTimeStep || attempt > 60)
+      throw std::runtime_error("SPH: the time step collapsed to " + std::to_string(dt) + " s at t = " +
+                               std::to_string(time_) + " s near particle " + std::to_string(worst) + " (x = " +
+                               std::to_string(s_.x[3 * worst]) + ", " + std::to_string(s_.x[3 * worst + 1]) + ", " +
+                               std::to_string(s_.x[3 * worst + 2]) + " m, material " +
+                               std::to_string(s_.material[worst]) + ")");
+    // Rebuild the list when this step's motion (dt vmax, plus what the velocity gains) could
+    // bring an unlisted pair into range; the margin covers several steps.
+    if (!neighboursValid(s_, 1.5 * dt * vmax)) {
+      const double hmin = *std::min_element(s_.h.begin(), s_.h.end());
+      buildNeighbours(s_, std::max(par_.skin * hmin, 4.0 * dt * vmax));
+    }
+    mid = s_;
+    for (std::size_t i = 0; i < 3 * n; ++i) {
+      mid.x[i] += dt * (s_.v[i] + (xs ? k1_.dx[i] : 0.0));
+      mid.v[i] += dt * k1_.dv[i];
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!par_.summationDensity)
+        mid.rho[i] = std::max(1e-6 * s_.rho[i], mid.rho[i] + dt * k1_.drho[i]);
+      mid.u[i] = std::max(0.0, mid.u[i] + dt * k1_.du[i]);
+    }
+    for (std::size_t i = 0; i < 6 * n; ++i)
+      mid.S[i] += dt * k1_.dS[i];
+    settle(mid, pm, cm);
+    computeRates(mid, pm, cm, k2);
+    // Error of the Euler predictor against Heun's step, relative to each particle's own
+    // scales (speed: its signal speed; density; energy: its energy plus c²). Steps above the
+    // tolerance are taken again, shorter (as miluphcuda's adaptive RK2 does).
+    err = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      double dv2 = 0.0, v2 = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const double d = k2.dv[3 * i + k] - k1_.dv[3 * i + k];
+        dv2 += d * d;
+        v2 += s_.v[3 * i + k] * s_.v[3 * i + k];
+      }
+      const double c = c_[i];
+      const double ev = 0.5 * dt * std::sqrt(dv2) / std::max({c, std::sqrt(v2), 1e-30});
+      const double er = par_.summationDensity ? 0.0 : 0.5 * dt * std::abs(k2.drho[i] - k1_.drho[i]) / s_.rho[i];
+      const double eu = 0.5 * dt * std::abs(k2.du[i] - k1_.du[i]) / (s_.u[i] + c * c + 1e-30);
+      const double e = std::max({ev, er, eu});
+      if (e > err)
+        err = e, worst = i;
+    }
+    if (err <= par_.errorTolerance)
+      break;
+    dt *= std::max(0.1, 0.9 * std::sqrt(par_.errorTolerance / err));
+  }
   for (std::size_t i = 0; i < 3 * n; ++i) {
     s_.x[i] += 0.5 * dt * (s_.v[i] + mid.v[i] + (xs ? k1_.dx[i] + k2.dx[i] : 0.0)); // before v changes
     s_.v[i] += 0.5 * dt * (k1_.dv[i] + k2.dv[i]);
@@ -556,7 +637,8 @@ double SphSolver::step(double dt) {
     s_.S[i] += 0.5 * dt * (k1_.dS[i] + k2.dS[i]);
   settle(s_, p_, c_);
   const double signal = computeRates(s_, p_, c_, k1_);
-  stableStep_ = limitStep(s_, k1_, signal);
+  const double grow = err > 0.0 ? std::min(2.0, 0.9 * std::sqrt(par_.errorTolerance / err)) : 2.0;
+  stableStep_ = std::min(limitStep(s_, k1_, signal), dt * std::max(grow, 1.0));
   time_ += dt;
   ++steps_;
   return dt;

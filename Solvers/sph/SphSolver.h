@@ -8,11 +8,11 @@
 // and shear (set initially; its Grady–Kipp growth is not modelled yet); equations of state by
 // material; smoothing length following the density (h = κ (m/ρ)^{1/3}, support h); periodic or
 // open boundaries; uniform or point-mass gravity; Heun's predictor–corrector (RK2) with the
-// Courant and force time steps.
+// Courant and force time steps and error control (a step whose Euler predictor and Heun
+// corrector differ by more than a tolerance is taken again, shorter).
 //
-// Neighbours: one list per step, built from a cell list with a margin for the motion and
-// the growth of h during the step, used by both stages (and the first stage of the next step,
-// whose rates are those of the end of this one). Periodic axes are handled by storing, with
+// Neighbours: a Verlet list built from a cell list with a margin (skin) for motion and for
+// growth of h, kept over steps until some pair could have come into range unlisted. Periodic axes are handled by storing, with
 // each neighbour, which image of it is near. OpenMP over particles; each particle sums only
 // its own rates, so results are the same bits for any thread count.
 #pragma once
@@ -46,6 +46,8 @@ struct SphParams {
   double kappa = 2.5;              // h = κ (m/ρ)^{1/3}
   double courant = 0.3;
   double forceFactor = 0.2;        // Δt ≤ forceFactor sqrt(h / |a|)
+  double skin = 0.15;               // neighbour-list margin, in units of the smallest h
+  double errorTolerance = 0.02;    // largest relative Euler–Heun difference of a step (else retaken shorter)
   double minTimeStep = 0.0;        // a step below this stops the run (0: only a non-positive step)
   bool summationDensity = false;   // ρ = Σ m W (gases) instead of the integrated continuity equation
   double gravity[3] = {0, 0, 0};   // uniform, m/s²
@@ -59,11 +61,13 @@ struct SphParams {
 class SphSolver {
 public:
   SphSolver(const SphState& initial, const SphParams& params);
-  // One Heun step of size dt (0: the stable step).
+  // One Heun step of at most dt (0: the stable step); returns the step taken, shorter than
+  // asked when the error control needs it.
   double step(double dt = 0.0);
   void advanceTo(double t);
   double time() const { return time_; }
-  void setTime(double t) { time_ = t; }
+  // Sets the clock of a state restored from a snapshot or checkpoint.
+  void restore(double time, std::size_t steps) { time_ = time, steps_ = steps; }
   std::size_t steps() const { return steps_; }
   const SphState& state() const { return s_; }
   const SphParams& params() const { return par_; }
@@ -84,8 +88,11 @@ private:
   struct Neighbours {
     std::vector<std::uint32_t> start; // CSR offsets, size n+1
     std::vector<std::uint32_t> entry; // neighbour index * 32 + periodic image code
+    std::vector<double> x, h;         // positions and smoothing lengths at the build
+    double margin = 0.0, grow = 1.0;
   };
   void buildNeighbours(const SphState& s, double margin);
+  bool neighboursValid(const SphState& s, double extra) const;
   // Positions into the periodic box, h from ρ, ρ by summation when asked, then pressure and
   // sound speed into p and c and the yield limit on the deviatoric stress.
   void settle(SphState& s, std::vector<double>& p, std::vector<double>& c) const;

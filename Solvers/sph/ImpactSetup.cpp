@@ -1,0 +1,138 @@
+#include "sph/ImpactSetup.h"
+
+#include "common/Error.h"
+
+#include <cmath>
+#include <string>
+#include <unistd.h>
+
+namespace craterkit {
+
+namespace {
+double referenceDensity(const EquationOfState& e) {
+  switch (e.model) {
+  case EquationOfState::Model::Tillotson:
+    return e.tillotson.rho0;
+  case EquationOfState::Model::Murnaghan:
+    return e.murnaghanRho0;
+  case EquationOfState::Model::IdealGas:
+    break;
+  }
+  throw InputError("SPHImpact: an ideal gas has no reference density to build a solid body from");
+}
+
+std::size_t physicalMemory() {
+  const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && size > 0 ? static_cast<std::size_t>(pages) * static_cast<std::size_t>(size) : 0;
+}
+} // namespace
+
+std::size_t sphBytesPerParticle(double kappa) {
+  // State (≈ 22 doubles) three times (current, predictor, checkpoint copy), rates (≈ 17 doubles)
+  // twice, and the neighbour list: 4 bytes per neighbour within 1.1 κ spacings.
+  const double neighbours = 4.0 / 3.0 * M_PI * std::pow(1.1 * kappa, 3.0);
+  return static_cast<std::size_t>(8.0 * (3 * 22 + 2 * 17) + 4.0 * neighbours + 64.0);
+}
+
+void SphImpactSetup::validate() const {
+  auto positive = [](double v, const char* what) {
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw InputError(std::string("SPHImpact: ") + what + " must be positive (got " + std::to_string(v) + ")");
+  };
+  if (impactorRadius > 0.0)
+    positive(impactorRadius, "ImpactorRadius");
+  else
+    positive(impactorMass, "ImpactorMass");
+  if (impactorRadius < 0.0 || !std::isfinite(impactorRadius))
+    throw InputError("SPHImpact: ImpactorRadius must not be negative (0: from the mass)");
+  positive(impactSpeed, "ImpactSpeed");
+  if (!(impactAngle >= 0.0 && impactAngle < 90.0))
+    throw InputError("SPHImpact: ImpactAngle must be in [0, 90) degrees from the vertical (got " +
+                     std::to_string(impactAngle) + ")");
+  positive(targetRadius, "TargetRadius");
+  if (!(targetPorosity < 1.0) || !std::isfinite(targetPorosity))
+    throw InputError("SPHImpact: TargetPorosity must be below 1 (negative: the material's)");
+  if (!(frictionAngle < 90.0) || !std::isfinite(frictionAngle))
+    throw InputError("SPHImpact: FrictionAngle must be below 90 degrees (negative: the material's)");
+  if (!std::isfinite(cohesion))
+    throw InputError("SPHImpact: Cohesion must be finite");
+  if (!(surfaceGravity >= 0.0) || !std::isfinite(surfaceGravity))
+    throw InputError("SPHImpact: SurfaceGravity must not be negative");
+  if (particlesAcrossImpactor < 2 || particlesAcrossImpactor > 1000)
+    throw InputError("SPHImpact: ParticlesAcrossImpactor must be in [2, 1000]");
+}
+
+SphImpactProblem buildImpact(const SphImpactSetup& setup) {
+  setup.validate();
+  Material imp = findMaterial(setup.materialDirectory, setup.impactorMaterial);
+  Material tgt = findMaterial(setup.materialDirectory, setup.targetMaterial);
+  const double rhoImp = referenceDensity(imp.eos), rhoMatrix = referenceDensity(tgt.eos);
+  if (setup.targetPorosity >= 0.0)
+    tgt.distention = 1.0 / (1.0 - setup.targetPorosity);
+  if (setup.frictionAngle >= 0.0)
+    tgt.frictionAngle = setup.frictionAngle;
+  if (setup.cohesion >= 0.0)
+    tgt.cohesion = setup.cohesion;
+  SphImpactProblem out;
+  const double a = setup.impactorRadius > 0.0 ? setup.impactorRadius
+                                              : std::cbrt(3.0 * setup.impactorMass / (4.0 * M_PI * rhoImp));
+  const double mass = setup.impactorRadius > 0.0 ? 4.0 / 3.0 * M_PI * a * a * a * rhoImp : setup.impactorMass;
+  const double dx = 2.0 * a / setup.particlesAcrossImpactor, R = setup.targetRadius;
+  if (R < 3.0 * a)
+    throw InputError("SPHImpact: TargetRadius must be at least three impactor radii");
+  out.spacing = dx;
+  out.impactorRadius = a;
+  out.targetBulkDensity = rhoMatrix / tgt.distention;
+
+  // Refuse what the machine cannot hold before allocating anything.
+  const double volume = setup.targetShape == SphImpactSetup::Shape::Hemisphere ? 2.0 / 3.0 * M_PI * R * R * R
+                                                                               : 4.0 * R * R * R;
+  const double estimate = volume / (dx * dx * dx) + 4.0 / 3.0 * M_PI * std::pow(0.5 * setup.particlesAcrossImpactor, 3);
+  const double need = estimate * static_cast<double>(sphBytesPerParticle(2.5));
+  const double have = static_cast<double>(physicalMemory());
+  if (estimate > 1.2e8 || (have > 0.0 && need > setup.memoryLimitFraction * have))
+    throw InputError("SPHImpact: about " + std::to_string(static_cast<long long>(estimate)) + " particles would need " +
+                     std::to_string(static_cast<long long>(need / 1e9)) + " GB of memory (" +
+                     std::to_string(static_cast<long long>(have / 1e9)) +
+                     " GB here): lower ParticlesAcrossImpactor or TargetRadius");
+
+  const double th = setup.impactAngle * M_PI / 180.0;
+  const double dir[3] = {std::sin(th), 0.0, -std::cos(th)};
+  const double gap = 0.5 * dx; // the impactor's lowest particles sit half a spacing above z = 0
+  const double centre[3] = {-dir[0] * (a + gap), 0.0, -dir[2] * (a + gap)};
+  const double vel[3] = {setup.impactSpeed * dir[0], 0.0, setup.impactSpeed * dir[2]};
+  const int n = static_cast<int>(std::ceil(a / dx)) + 1;
+  std::vector<double> pts;
+  for (int i = -n; i <= n; ++i)
+    for (int j = -n; j <= n; ++j)
+      for (int k = -n; k <= n; ++k) {
+        const double p[3] = {(i + 0.5) * dx, (j + 0.5) * dx, (k + 0.5) * dx};
+        if (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] <= a * a)
+          pts.insert(pts.end(), p, p + 3);
+      }
+  const std::size_t ni = pts.size() / 3;
+  if (ni == 0)
+    throw InputError("SPHImpact: the impactor has no particles");
+  for (std::size_t q = 0; q < ni; ++q) {
+    const double x[3] = {centre[0] + pts[3 * q], centre[1] + pts[3 * q + 1], centre[2] + pts[3 * q + 2]};
+    out.state.add(x, vel, mass / static_cast<double>(ni), rhoImp, 0.0, 0);
+  }
+  out.impactorParticles = ni;
+
+  const int m = static_cast<int>(std::ceil(R / dx));
+  const double mt = out.targetBulkDensity * dx * dx * dx, rest[3] = {0, 0, 0};
+  for (int k = 0; k < m; ++k)
+    for (int j = -m; j < m; ++j)
+      for (int i = -m; i < m; ++i) {
+        const double x[3] = {(i + 0.5) * dx, (j + 0.5) * dx, -(k + 0.5) * dx};
+        if (setup.targetShape == SphImpactSetup::Shape::Hemisphere && x[0] * x[0] + x[1] * x[1] + x[2] * x[2] > R * R)
+          continue;
+        out.state.add(x, rest, mt, out.targetBulkDensity, 0.0, 1);
+        out.state.alpha.back() = tgt.distention;
+      }
+  out.params.materials = {imp, tgt};
+  out.params.gravity[2] = -setup.surfaceGravity;
+  return out;
+}
+
+} // namespace craterkit

@@ -1,0 +1,52 @@
+// The SCI-like impact problem for the SPH solver: an impactor sphere striking a porous,
+// granular target under surface gravity (issue: SPHImpact; PHYSICS.md §2 and §4.1).
+//
+// Both bodies are cut from one cubic lattice of spacing dx = 2 a / ParticlesAcrossImpactor,
+// so every particle has the volume dx³; impactor particles share the impactor's mass exactly.
+// The target (a hemisphere of radius R, or a half-space block of half-width R and depth R)
+// has its surface at z = 0 with gravity along −z; the impactor touches the surface at the
+// origin, moving at ImpactSpeed at ImpactAngle from the vertical in the x–z plane.
+#pragma once
+
+#include "sph/SphSolver.h"
+
+#include <cstddef>
+#include <string>
+
+namespace craterkit {
+
+struct SphImpactSetup {
+  std::string materialDirectory;      // folder of *.cfg material files
+  std::string impactorMaterial = "copper";
+  double impactorMass = 2.0;          // kg
+  double impactorRadius = 0.0;        // m; 0: from the mass and the material's density
+  double impactSpeed = 2000.0;        // m/s
+  double impactAngle = 0.0;           // degrees from the vertical, in [0, 90)
+  std::string targetMaterial = "regolith";
+  enum class Shape { HalfSpace, Hemisphere } targetShape = Shape::Hemisphere;
+  double targetRadius = 0.4;          // m
+  double targetPorosity = -1.0;       // in [0, 1); negative: the material's distention
+  double frictionAngle = -1.0;        // degrees; negative: the material's
+  double cohesion = -1.0;             // Pa; negative: the material's
+  double surfaceGravity = 1.5e-4;     // m/s², along −z (Ryugu, GM/R² with R = 448 m)
+  int particlesAcrossImpactor = 4;
+  double memoryLimitFraction = 0.8;   // refuse set-ups that need more of the machine's memory
+  void validate() const;
+};
+
+struct SphImpactProblem {
+  SphState state;
+  SphParams params;                   // materials 0: impactor, 1: target; gravity set
+  double spacing = 0.0;               // dx, m
+  double impactorRadius = 0.0;        // m
+  std::size_t impactorParticles = 0;  // the first ones in the state
+  double targetBulkDensity = 0.0;     // kg/m³
+};
+
+// Builds the particles; throws InputError naming the bad parameter before any work.
+SphImpactProblem buildImpact(const SphImpactSetup& setup);
+
+// Bytes the solver needs per particle (state, two stages, neighbour list), for memory checks.
+std::size_t sphBytesPerParticle(double kappa);
+
+} // namespace craterkit

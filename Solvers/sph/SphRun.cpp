@@ -1,0 +1,135 @@
+#include "sph/SphRun.h"
+
+#include "common/Error.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+namespace craterkit {
+
+namespace {
+constexpr char kMagic[8] = {'C', 'K', 'S', 'P', 'H', '1', '\n', '\0'};
+
+template <class T> void put(std::ofstream& out, const std::vector<T>& v) {
+  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+}
+template <class T> void get(std::ifstream& in, std::vector<T>& v, std::size_t n, const std::string& path) {
+  v.resize(n);
+  if (!in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T))))
+    throw InputError(path + ": the SPH checkpoint is truncated");
+}
+} // namespace
+
+void writeSphCheckpoint(const std::string& path, const SphState& s, double time, std::size_t steps) {
+  const std::string tmp = path + ".part";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out)
+      throw std::runtime_error(tmp + ": cannot write the SPH checkpoint");
+    out.write(kMagic, sizeof kMagic);
+    const std::uint64_t head[2] = {s.size(), steps};
+    out.write(reinterpret_cast<const char*>(head), sizeof head);
+    out.write(reinterpret_cast<const char*>(&time), sizeof time);
+    put(out, s.x), put(out, s.v), put(out, s.mass), put(out, s.rho), put(out, s.u), put(out, s.h);
+    put(out, s.S), put(out, s.alpha), put(out, s.damage);
+    std::vector<std::int32_t> mat(s.material.begin(), s.material.end());
+    put(out, mat);
+    if (!out.flush())
+      throw std::runtime_error(tmp + ": writing the SPH checkpoint failed (disk full?)");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw std::runtime_error(path + ": cannot move the SPH checkpoint into place");
+}
+
+SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& steps) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw InputError(path + ": cannot open the SPH checkpoint");
+  in.seekg(0, std::ios::end);
+  const std::uint64_t bytes = static_cast<std::uint64_t>(in.tellg());
+  in.seekg(0);
+  char magic[8];
+  std::uint64_t head[2];
+  if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+    throw InputError(path + ": not a CraterKit SPH checkpoint (bad magic)");
+  if (!in.read(reinterpret_cast<char*>(head), sizeof head) || !in.read(reinterpret_cast<char*>(&time), sizeof time))
+    throw InputError(path + ": the SPH checkpoint header is truncated");
+  const std::uint64_t n = head[0];
+  const std::uint64_t perParticle = 8 * (3 + 3 + 4 + 6 + 2) + 4;
+  if (n == 0 || n > (bytes - 32) / perParticle || (bytes - 32) != n * perParticle)
+    throw InputError(path + ": the SPH checkpoint's particle count (" + std::to_string(n) +
+                     ") does not match its size of " + std::to_string(bytes) + " bytes");
+  if (!std::isfinite(time))
+    throw InputError(path + ": the SPH checkpoint's time is not finite");
+  steps = head[1];
+  SphState s;
+  get(in, s.x, 3 * n, path), get(in, s.v, 3 * n, path), get(in, s.mass, n, path), get(in, s.rho, n, path);
+  get(in, s.u, n, path), get(in, s.h, n, path), get(in, s.S, 6 * n, path), get(in, s.alpha, n, path);
+  get(in, s.damage, n, path);
+  std::vector<std::int32_t> mat;
+  get(in, mat, n, path);
+  s.material.assign(mat.begin(), mat.end());
+  return s;
+}
+
+SphRun::SphRun(const SphState& initial, const SphParams& params, std::size_t keptStates)
+    : initial_(initial), params_(params), keptStates_(keptStates),
+      solver_(std::make_unique<SphSolver>(initial, params)) {}
+
+void SphRun::keep() {
+  if (keptStates_ == 0 || kept_.count(solver_->time()))
+    return;
+  kept_[solver_->time()] = Snapshot{solver_->state(), solver_->time(), solver_->steps()};
+  while (kept_.size() > keptStates_)
+    kept_.erase(kept_.begin());
+}
+
+const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress, const std::string& checkpointPath,
+                                   long long checkpointEvery) {
+  if (time < solver_->time()) {
+    auto it = kept_.upper_bound(time);
+    if (it == kept_.begin()) {
+      solver_ = std::make_unique<SphSolver>(initial_, params_);
+    } else {
+      --it;
+      solver_ = std::make_unique<SphSolver>(it->second.state, params_);
+      solver_->restore(it->second.time, it->second.steps);
+    }
+  }
+  const double from = solver_->time();
+  std::size_t lastCheckpoint = solver_->steps();
+  while (solver_->time() < time) {
+    const double dt = std::min(solver_->stableStep(), time - solver_->time());
+    solver_->step(dt);
+    if (!checkpointPath.empty() && checkpointEvery > 0 &&
+        solver_->steps() - lastCheckpoint >= static_cast<std::size_t>(checkpointEvery)) {
+      writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps());
+      lastCheckpoint = solver_->steps();
+    }
+    reportProgress(progress, (solver_->time() - from) / (time - from));
+  }
+  if (!checkpointPath.empty() && checkpointEvery > 0 && solver_->steps() != lastCheckpoint)
+    writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps());
+  keep();
+  return *solver_;
+}
+
+void SphRun::resumeFrom(const std::string& checkpointPath) {
+  double t = 0.0;
+  std::size_t steps = 0;
+  const SphState s = readSphCheckpoint(checkpointPath, t, steps);
+  if (s.size() != initial_.size())
+    throw InputError(checkpointPath + ": the checkpoint has " + std::to_string(s.size()) + " particles, this set-up " +
+                     std::to_string(initial_.size()));
+  for (int m : s.material)
+    if (m < 0 || static_cast<std::size_t>(m) >= params_.materials.size())
+      throw InputError(checkpointPath + ": the checkpoint names a material this set-up does not have");
+  solver_ = std::make_unique<SphSolver>(s, params_);
+  solver_->restore(t, steps);
+  kept_.clear();
+}
+
+} // namespace craterkit
