@@ -23,7 +23,7 @@ template <class T> void get(std::ifstream& in, std::vector<T>& v, std::size_t n,
 }
 } // namespace
 
-void writeSphCheckpoint(const std::string& path, const SphState& s, double time, std::size_t steps) {
+void writeSphCheckpoint(const std::string& path, const SphState& s, double time, std::size_t steps, double nextStep) {
   const std::string tmp = path + ".part";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
@@ -33,6 +33,7 @@ void writeSphCheckpoint(const std::string& path, const SphState& s, double time,
     const std::uint64_t head[2] = {s.size(), steps};
     out.write(reinterpret_cast<const char*>(head), sizeof head);
     out.write(reinterpret_cast<const char*>(&time), sizeof time);
+    out.write(reinterpret_cast<const char*>(&nextStep), sizeof nextStep);
     put(out, s.x), put(out, s.v), put(out, s.mass), put(out, s.rho), put(out, s.u), put(out, s.h);
     put(out, s.S), put(out, s.alpha), put(out, s.damage);
     std::vector<std::int32_t> mat(s.material.begin(), s.material.end());
@@ -44,7 +45,7 @@ void writeSphCheckpoint(const std::string& path, const SphState& s, double time,
     throw std::runtime_error(path + ": cannot move the SPH checkpoint into place");
 }
 
-SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& steps) {
+SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& steps, double& nextStep) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw InputError(path + ": cannot open the SPH checkpoint");
@@ -53,17 +54,19 @@ SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& s
   in.seekg(0);
   char magic[8];
   std::uint64_t head[2];
-  if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+  if (bytes < 8 || !in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
     throw InputError(path + ": not a CraterKit SPH checkpoint (bad magic)");
-  if (!in.read(reinterpret_cast<char*>(head), sizeof head) || !in.read(reinterpret_cast<char*>(&time), sizeof time))
+  if (!in.read(reinterpret_cast<char*>(head), sizeof head) || !in.read(reinterpret_cast<char*>(&time), sizeof time) ||
+      !in.read(reinterpret_cast<char*>(&nextStep), sizeof nextStep))
     throw InputError(path + ": the SPH checkpoint header is truncated");
   const std::uint64_t n = head[0];
   const std::uint64_t perParticle = 8 * (3 + 3 + 4 + 6 + 2) + 4;
-  if (n == 0 || n > (bytes - 32) / perParticle || (bytes - 32) != n * perParticle)
+  constexpr std::uint64_t header = 40;
+  if (bytes < header || n == 0 || n > (bytes - header) / perParticle || (bytes - header) != n * perParticle)
     throw InputError(path + ": the SPH checkpoint's particle count (" + std::to_string(n) +
                      ") does not match its size of " + std::to_string(bytes) + " bytes");
-  if (!std::isfinite(time))
-    throw InputError(path + ": the SPH checkpoint's time is not finite");
+  if (!std::isfinite(time) || !(nextStep > 0.0) || !std::isfinite(nextStep))
+    throw InputError(path + ": the SPH checkpoint's time or time step is not a finite positive number");
   steps = head[1];
   SphState s;
   get(in, s.x, 3 * n, path), get(in, s.v, 3 * n, path), get(in, s.mass, n, path), get(in, s.rho, n, path);
@@ -82,7 +85,7 @@ SphRun::SphRun(const SphState& initial, const SphParams& params, std::size_t kep
 void SphRun::keep() {
   if (keptStates_ == 0 || kept_.count(solver_->time()))
     return;
-  kept_[solver_->time()] = Snapshot{solver_->state(), solver_->time(), solver_->steps()};
+  kept_[solver_->time()] = Snapshot{solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep()};
   while (kept_.size() > keptStates_)
     kept_.erase(kept_.begin());
 }
@@ -96,7 +99,7 @@ const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress
     } else {
       --it;
       solver_ = std::make_unique<SphSolver>(it->second.state, params_);
-      solver_->restore(it->second.time, it->second.steps);
+      solver_->restore(it->second.time, it->second.steps, it->second.nextStep);
     }
   }
   const double from = solver_->time();
@@ -106,21 +109,21 @@ const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress
     solver_->step(dt);
     if (!checkpointPath.empty() && checkpointEvery > 0 &&
         solver_->steps() - lastCheckpoint >= static_cast<std::size_t>(checkpointEvery)) {
-      writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps());
+      writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep());
       lastCheckpoint = solver_->steps();
     }
     reportProgress(progress, (solver_->time() - from) / (time - from));
   }
   if (!checkpointPath.empty() && checkpointEvery > 0 && solver_->steps() != lastCheckpoint)
-    writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps());
+    writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep());
   keep();
   return *solver_;
 }
 
 void SphRun::resumeFrom(const std::string& checkpointPath) {
-  double t = 0.0;
+  double t = 0.0, next = 0.0;
   std::size_t steps = 0;
-  const SphState s = readSphCheckpoint(checkpointPath, t, steps);
+  const SphState s = readSphCheckpoint(checkpointPath, t, steps, next);
   if (s.size() != initial_.size())
     throw InputError(checkpointPath + ": the checkpoint has " + std::to_string(s.size()) + " particles, this set-up " +
                      std::to_string(initial_.size()));
@@ -128,7 +131,7 @@ void SphRun::resumeFrom(const std::string& checkpointPath) {
     if (m < 0 || static_cast<std::size_t>(m) >= params_.materials.size())
       throw InputError(checkpointPath + ": the checkpoint names a material this set-up does not have");
   solver_ = std::make_unique<SphSolver>(s, params_);
-  solver_->restore(t, steps);
+  solver_->restore(t, steps, next);
   kept_.clear();
 }
 

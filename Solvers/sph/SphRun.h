@@ -32,6 +32,7 @@ private:
     SphState state;
     double time;
     std::size_t steps;
+    double nextStep;
   };
   void keep();
   SphState initial_;
@@ -41,9 +42,11 @@ private:
   std::map<double, Snapshot> kept_;
 };
 
-// Checkpoint files: "CKSPH1", particle and material counts, time, steps, then the arrays.
-void writeSphCheckpoint(const std::string& path, const SphState& s, double time, std::size_t steps);
+// Checkpoint files: "CKSPH1\n\0", particle count and steps (uint64), time and the next time
+// step (double), then the arrays x v m ρ u h S α D (double) and material (int32), native
+// byte order. Written to PATH.part and renamed, so a crash never leaves a half-written file.
+void writeSphCheckpoint(const std::string& path, const SphState& s, double time, std::size_t steps, double nextStep);
 // Throws InputError naming the file and what is wrong with it.
-SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& steps);
+SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& steps, double& nextStep);
 
 } // namespace craterkit

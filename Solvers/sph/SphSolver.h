@@ -67,7 +67,11 @@ public:
   void advanceTo(double t);
   double time() const { return time_; }
   // Sets the clock of a state restored from a snapshot or checkpoint.
-  void restore(double time, std::size_t steps) { time_ = time, steps_ = steps; }
+  void restore(double time, std::size_t steps, double nextStep) {
+    time_ = time, steps_ = steps;
+    if (nextStep > 0.0)
+      stableStep_ = nextStep;
+  }
   std::size_t steps() const { return steps_; }
   const SphState& state() const { return s_; }
   const SphParams& params() const { return par_; }

@@ -1,0 +1,183 @@
+// The SCI-like SPH impact: conservation over the SPHImpact default run, checkpoint and
+// resume, and the errors a user gets for bad set-ups.
+#include "common/Error.h"
+#include "sph/ImpactSetup.h"
+#include "sph/SphRun.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+using namespace craterkit;
+
+namespace {
+
+SphImpactSetup sciSetup() {
+  SphImpactSetup s; // the SPHImpact source's defaults
+  s.materialDirectory = std::string(CRATERKIT_SOURCE_DIR) + "/data/materials";
+  s.targetRadius = 0.3;
+  s.frictionAngle = 30.0;
+  s.cohesion = 0.0;
+  return s;
+}
+
+double totalMass(const SphState& s) {
+  double m = 0.0;
+  for (double v : s.mass)
+    m += v;
+  return m;
+}
+
+std::string tempPath(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("craterkit_" + name + "_" + std::to_string(::getpid()))).string();
+}
+
+} // namespace
+
+// Total momentum changes only by gravity's impulse (to round-off), total energy (kinetic,
+// internal, gravitational) within 1 % over the default run: 0.5 ms, the shock through the
+// target and the start of the excavation flow.
+TEST(SphImpact, SciDefaultRunConservesMomentumAndEnergy) {
+  const SphImpactSetup setup = sciSetup();
+  const SphImpactProblem prob = buildImpact(setup);
+  EXPECT_NEAR(prob.targetBulkDensity, 1190.0, 1.0);
+  double mImp = 0.0;
+  for (std::size_t i = 0; i < prob.impactorParticles; ++i)
+    mImp += prob.state.mass[i];
+  EXPECT_NEAR(mImp, 2.0, 1e-12);
+  EXPECT_NEAR(prob.impactorRadius, 0.0377, 0.0001); // 2 kg of copper
+
+  SphRun run(prob.state, prob.params);
+  const SphSolver& s0 = run.solver();
+  double P0[3];
+  s0.totalMomentum(P0);
+  const double E0 = s0.totalEnergy(), M = totalMass(prob.state), KE0 = s0.kineticEnergy();
+  EXPECT_NEAR(P0[2], -2.0 * 2000.0, 1e-9);
+  const double tEnd = 5e-4;
+  const SphSolver& s = run.advanceTo(tEnd);
+  double P[3];
+  s.totalMomentum(P);
+  const double expectedPz = P0[2] + M * prob.params.gravity[2] * s.time();
+  const double E = s.totalEnergy();
+  std::printf("SCI default: %zu particles, %zu steps to %.1e s; momentum error (%.2e, %.2e, %.2e) of |P0| = %.0f; "
+              "energy change %.3e of E0; kinetic energy %.3f of its start; internal %.3f of E0\n",
+              prob.state.size(), s.steps(), s.time(), P[0] / 4000.0, P[1] / 4000.0, (P[2] - expectedPz) / 4000.0,
+              std::abs(P0[2]), (E - E0) / E0, s.kineticEnergy() / KE0, s.internalEnergy() / E0);
+  EXPECT_NEAR(P[0], 0.0, 1e-11 * 4000.0);
+  EXPECT_NEAR(P[1], 0.0, 1e-11 * 4000.0);
+  EXPECT_NEAR(P[2], expectedPz, 1e-11 * 4000.0);
+  EXPECT_NEAR(E, E0, 0.01 * E0);
+  // Something happened: most of the kinetic energy went into the target's internal energy
+  // (compaction, shock heating), as in any impact into a porous target.
+  EXPECT_LT(s.kineticEnergy(), 0.5 * KE0);
+  double minAlpha = 10.0;
+  for (std::size_t i = prob.impactorParticles; i < s.state().size(); ++i)
+    minAlpha = std::min(minAlpha, s.state().alpha[i]);
+  EXPECT_LT(minAlpha, 1.5); // pores crushed under the impactor
+}
+
+// A run stopped at a checkpoint and resumed reaches the same state as one run straight
+// through (up to the order of sums in a rebuilt neighbour list).
+TEST(SphImpact, CheckpointAndResumeContinueTheRun) {
+  SphImpactSetup setup = sciSetup();
+  setup.particlesAcrossImpactor = 3;
+  setup.targetRadius = 0.15;
+  const SphImpactProblem prob = buildImpact(setup);
+  const std::string path = tempPath("sph_checkpoint");
+  const double t1 = 2e-5, t2 = 6e-5;
+
+  SphRun straight(prob.state, prob.params); // stops at t1 too, as a pipeline asking for both does
+  straight.advanceTo(t1);
+  straight.advanceTo(t2);
+
+  {
+    SphRun first(prob.state, prob.params);
+    first.advanceTo(t1, {}, path, 1000000); // written at the requested time
+  }
+  double tc = 0.0, next = 0.0;
+  std::size_t steps = 0;
+  EXPECT_EQ(readSphCheckpoint(path, tc, steps, next).size(), prob.state.size());
+  EXPECT_DOUBLE_EQ(tc, t1);
+  SphRun resumed(prob.state, prob.params);
+  resumed.resumeFrom(path);
+  EXPECT_DOUBLE_EQ(resumed.time(), t1);
+  resumed.advanceTo(t2);
+  const SphState& a = straight.solver().state();
+  const SphState& b = resumed.solver().state();
+  EXPECT_EQ(straight.solver().steps(), resumed.solver().steps());
+  double dx = 0.0, dv = 0.0;
+  for (std::size_t i = 0; i < a.x.size(); ++i) {
+    dx = std::max(dx, std::abs(a.x[i] - b.x[i]));
+    dv = std::max(dv, std::abs(a.v[i] - b.v[i]));
+  }
+  std::printf("resumed vs straight at %.1e s: max |dx| %.2e m, max |dv| %.2e m/s\n", t2, dx, dv);
+  EXPECT_LT(dx, 1e-9);
+  EXPECT_LT(dv, 1e-6);
+
+  // Going back in time restarts from a kept snapshot, not a stale state.
+  const SphSolver& back = straight.advanceTo(t1);
+  EXPECT_DOUBLE_EQ(back.time(), t1);
+
+  // A damaged checkpoint is refused with a message naming the file.
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) - 7);
+  try {
+    SphRun again(prob.state, prob.params);
+    again.resumeFrom(path);
+    FAIL() << "a truncated checkpoint was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  std::ofstream(path, std::ios::binary) << "not a checkpoint at all, just some text to fill bytes";
+  EXPECT_THROW(SphRun(prob.state, prob.params).resumeFrom(path), InputError);
+  std::filesystem::remove(path);
+}
+
+TEST(SphImpact, BadSetUpsGetClearErrorsBeforeAnyWork) {
+  auto message = [](SphImpactSetup s) -> std::string {
+    try {
+      buildImpact(s);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  SphImpactSetup s = sciSetup();
+  s.impactorMaterial = "unobtainium";
+  EXPECT_NE(message(s).find("unknown material 'unobtainium'"), std::string::npos) << message(s);
+  EXPECT_NE(message(s).find("copper"), std::string::npos); // lists the known ones
+  s = sciSetup();
+  s.impactSpeed = -5.0;
+  EXPECT_NE(message(s).find("ImpactSpeed"), std::string::npos);
+  s = sciSetup();
+  s.impactAngle = 90.0;
+  EXPECT_NE(message(s).find("ImpactAngle"), std::string::npos);
+  s = sciSetup();
+  s.impactorMass = NAN;
+  EXPECT_NE(message(s).find("ImpactorMass"), std::string::npos);
+  s = sciSetup();
+  s.targetPorosity = 1.0;
+  EXPECT_NE(message(s).find("TargetPorosity"), std::string::npos);
+  s = sciSetup();
+  s.particlesAcrossImpactor = 400; // ~ 10^11 particles
+  EXPECT_NE(message(s).find("memory"), std::string::npos) << message(s);
+
+  // A time step that collapses below the floor stops with a message naming where.
+  s = sciSetup();
+  s.particlesAcrossImpactor = 3;
+  s.targetRadius = 0.15;
+  SphImpactProblem prob = buildImpact(s);
+  prob.params.minTimeStep = 1.0; // any real step is below this
+  SphSolver solver(prob.state, prob.params);
+  try {
+    solver.step();
+    FAIL() << "the step did not stop";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("time step collapsed"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("near particle"), std::string::npos) << e.what();
+  }
+}
