@@ -141,6 +141,9 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(s_.x[3 * i + k]) || !std::isfinite(s_.v[3 * i + k]))
         throw InputError(which + " has a non-finite position or velocity");
+    if (par_.materials[static_cast<std::size_t>(s_.material[i])].rigid &&
+        (s_.v[3 * i] != 0.0 || s_.v[3 * i + 1] != 0.0 || s_.v[3 * i + 2] != 0.0))
+      throw InputError(which + " belongs to a rigid boundary but is moving");
     for (int k = 0; k < 6; ++k)
       if (!std::isfinite(s_.S[6 * i + k]))
         throw InputError(which + " has a non-finite stress");
@@ -397,6 +400,9 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
   std::vector<double> G(par_.materials.size());
   for (std::size_t m = 0; m < G.size(); ++m)
     G[m] = par_.materials[m].strength == Material::Strength::None ? 0.0 : par_.materials[m].shearModulus;
+  std::vector<char> rigidMat(par_.materials.size());
+  for (std::size_t m = 0; m < rigidMat.size(); ++m)
+    rigidMat[m] = par_.materials[m].rigid;
   std::vector<Packed> P(n);
   bool anyStress = false;
 #pragma omp parallel for schedule(static) reduction(|| : anyStress) if (n >= 4096)
@@ -494,11 +500,12 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
         ext[0] += k * dx, ext[1] += k * dy, ext[2] += k * dz;
       }
     }
+    const bool rigid = rigidMat[static_cast<std::size_t>(s.material[a])];
     for (int k = 0; k < 3; ++k)
-      r.dv[3 * a + k] = acc[k] + ext[k];
+      r.dv[3 * a + k] = rigid ? 0.0 : acc[k] + ext[k];
     if (par_.xsph > 0.0)
       for (int k = 0; k < 3; ++k)
-        r.dx[3 * a + k] = xs[k];
+        r.dx[3 * a + k] = rigid ? 0.0 : xs[k];
     r.drho[a] = dr;
     r.du[a] = de;
     double* dS = &r.dS[6 * a];
