@@ -45,6 +45,8 @@ double EquationOfState::pressure(double rho, double u) const {
     return murnaghanK0 / murnaghanN * (std::pow(rho / murnaghanRho0, murnaghanN) - 1.0);
   case Model::IdealGas:
     return (gamma - 1.0) * rho * u;
+  case Model::StiffenedGas:
+    return stiffC0 * stiffC0 * (rho - stiffRho0) + (stiffGamma - 1.0) * rho * u;
   }
   return 0.0;
 }
@@ -57,6 +59,9 @@ double EquationOfState::soundSpeed(double rho, double u) const {
     break;
   case Model::Murnaghan:
     c2 = murnaghanK0 / murnaghanRho0 * std::pow(rho / murnaghanRho0, murnaghanN - 1.0);
+    break;
+  case Model::StiffenedGas:
+    c2 = stiffC0 * stiffC0 + (stiffGamma - 1.0) * (u + pressure(rho, u) / rho);
     break;
   case Model::Tillotson: {
     // In the cold expanded region the pressure is held at 0: no stiffness (the floor applies).
@@ -100,6 +105,12 @@ void EquationOfState::validate() {
     positive(murnaghanK0, "K0");
     positive(murnaghanN, "n");
     break;
+  case Model::StiffenedGas:
+    positive(stiffRho0, "rho0");
+    positive(stiffC0, "c0");
+    if (!(stiffGamma >= 1.0) || !std::isfinite(stiffGamma))
+      throw InputError("equation of state: the stiffened-gas Gruneisen gamma must be at least 1");
+    break;
   case Model::IdealGas:
     if (!(gamma > 1.0) || !std::isfinite(gamma))
       throw InputError("equation of state: gamma must be above 1 (got " + std::to_string(gamma) + ")");
@@ -114,7 +125,9 @@ EquationOfState::Model EquationOfState::modelFromName(const std::string& name) {
     return Model::Murnaghan;
   if (name == "IdealGas")
     return Model::IdealGas;
-  throw InputError("unknown equation of state '" + name + "' (Tillotson, Murnaghan, IdealGas)");
+  if (name == "StiffenedGas")
+    return Model::StiffenedGas;
+  throw InputError("unknown equation of state '" + name + "' (Tillotson, Murnaghan, IdealGas, StiffenedGas)");
 }
 
 const char* EquationOfState::nameOf(Model m) {
@@ -122,6 +135,7 @@ const char* EquationOfState::nameOf(Model m) {
   case Model::Tillotson: return "Tillotson";
   case Model::Murnaghan: return "Murnaghan";
   case Model::IdealGas: return "IdealGas";
+  case Model::StiffenedGas: return "StiffenedGas";
   }
   return "?";
 }

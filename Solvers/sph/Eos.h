@@ -1,5 +1,5 @@
 // Equations of state for the SPH solver, chosen by name at run time (PHYSICS.md §2.4):
-// Tillotson (Tillotson 1962; as in miluphcuda's pressure.cu), Murnaghan, ideal gas.
+// Tillotson (Tillotson 1962; as in miluphcuda's pressure.cu), Murnaghan, ideal gas, stiffened gas.
 // Pressure p(ρ, u) in Pa for density ρ (kg/m³) and specific internal energy u (J/kg); the
 // sound speed comes from c² = ∂p/∂ρ|_u + (p/ρ²) ∂p/∂u|_ρ, floored at `soundSpeedFloor`.
 #pragma once
@@ -20,12 +20,15 @@ struct TillotsonParams {
 };
 
 struct EquationOfState {
-  enum class Model { Tillotson, Murnaghan, IdealGas } model = Model::Tillotson;
+  enum class Model { Tillotson, Murnaghan, IdealGas, StiffenedGas } model = Model::Tillotson;
   TillotsonParams tillotson;
   // Murnaghan: p = (K0 / n) ((ρ/ρ0)^n − 1).
   double murnaghanRho0 = 2700.0, murnaghanK0 = 50e9, murnaghanN = 4.0;
   // Ideal gas: p = (γ − 1) ρ u.
   double gamma = 1.4;
+  // Stiffened gas (Howell & Ball 2002, as PySPH's StiffenedGasEOS): p = c0² (ρ − ρ0) + (Γ − 1) ρ u,
+  // c² = c0² + (Γ − 1)(u + p/ρ).
+  double stiffRho0 = 2700.0, stiffC0 = 5000.0, stiffGamma = 2.0;
   double soundSpeedFloor = 0.0; // m/s; Tillotson default: 1 % of sqrt(A/ρ0) (set by validate)
 
   double pressure(double rho, double u) const;

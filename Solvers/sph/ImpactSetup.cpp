@@ -15,6 +15,8 @@ double referenceDensity(const EquationOfState& e) {
     return e.tillotson.rho0;
   case EquationOfState::Model::Murnaghan:
     return e.murnaghanRho0;
+  case EquationOfState::Model::StiffenedGas:
+    return e.stiffRho0;
   case EquationOfState::Model::IdealGas:
     break;
   }

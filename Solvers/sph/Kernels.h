@@ -34,6 +34,20 @@ struct CubicSpline {
   }
 };
 
+// Branch-free forms for vectorised loops, valid for 0 < q = r/h < 1 (callers filter first):
+// gradOverR(q, ih) = (dW/dr) / r and value(q, ih) = W, with ih = 1/h.
+inline double cubicGradOverR(double q, double ih) {
+  const double s = 8.0 / M_PI * ih * ih * ih * ih * ih; // 8/(π h⁵)
+  const double t = 1.0 - q;
+  const double inner = 18.0 * q - 12.0;        // (18q² − 12q)/q
+  const double outer = -6.0 * t * t / q;
+  return s * (q < 0.5 ? inner : outer);
+}
+inline double cubicValue(double q, double ih) {
+  const double s = 8.0 / M_PI * ih * ih * ih, t = 1.0 - q;
+  return s * (q < 0.5 ? 6.0 * q * q * q - 6.0 * q * q + 1.0 : 2.0 * t * t * t);
+}
+
 struct WendlandC2 {
   static constexpr const char* name = "WendlandC2";
   static double W(double r, double h) {
@@ -51,6 +65,25 @@ struct WendlandC2 {
     // d/dq [(1-q)^4 (1+4q)] = -20 q (1-q)^3
     return 21.0 / (2.0 * M_PI * h * h * h * h) * (-20.0 * q * t * t * t);
   }
+};
+
+inline double wendlandGradOverR(double q, double ih) {
+  const double t = 1.0 - q;
+  return 21.0 / (2.0 * M_PI) * ih * ih * ih * ih * ih * (-20.0 * t * t * t);
+}
+inline double wendlandValue(double q, double ih) {
+  const double t = 1.0 - q;
+  return 21.0 / (2.0 * M_PI) * ih * ih * ih * t * t * t * t * (1.0 + 4.0 * q);
+}
+
+template <class K> struct Branchless;
+template <> struct Branchless<CubicSpline> {
+  static double gradOverR(double q, double ih) { return cubicGradOverR(q, ih); }
+  static double value(double q, double ih) { return cubicValue(q, ih); }
+};
+template <> struct Branchless<WendlandC2> {
+  static double gradOverR(double q, double ih) { return wendlandGradOverR(q, ih); }
+  static double value(double q, double ih) { return wendlandValue(q, ih); }
 };
 
 } // namespace craterkit

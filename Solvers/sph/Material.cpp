@@ -36,7 +36,9 @@ Material readMaterial(const std::string& path) {
   Material m;
   TillotsonParams& t = m.eos.tillotson;
   std::map<std::string, std::function<void(double)>> numbers = {
-      {"rho0", [&](double v) { t.rho0 = m.eos.murnaghanRho0 = v; }},
+      {"rho0", [&](double v) { t.rho0 = m.eos.murnaghanRho0 = m.eos.stiffRho0 = v; }},
+      {"c0", [&](double v) { m.eos.stiffC0 = v; }},
+      {"gruneisen", [&](double v) { m.eos.stiffGamma = v; }},
       {"A", [&](double v) { t.A = v; }},
       {"B", [&](double v) { t.B = v; }},
       {"E0", [&](double v) { t.E0 = v; }},

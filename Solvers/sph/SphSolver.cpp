@@ -4,6 +4,8 @@
 #include "common/Error.h"
 #include "sph/Kernels.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -377,14 +379,22 @@ void SphSolver::densityBySummation(SphState& s) const {
 }
 
 namespace {
-// What a particle's neighbours read of it, packed in one place (two cache lines) instead of
-// eight scattered arrays.
-struct alignas(64) Packed {
+// What a particle's neighbours read of it, packed in one place (144 bytes) instead of eight
+// scattered arrays.
+struct Packed {
   double x[3], v[3];
   double h, rho, m, vol; // vol = m/ρ
   double pr;             // p/ρ²
   double c;
   double s[6];           // S/ρ²
+};
+// Per-thread buffers of one particle's interacting neighbours.
+struct Scratch {
+  std::vector<std::uint32_t> idx;
+  std::vector<double> rx, ry, rz, r2;
+  void resize(std::size_t n) {
+    idx.resize(n), rx.resize(n), ry.resize(n), rz.resize(n), r2.resize(n);
+  }
 };
 } // namespace
 
@@ -403,11 +413,13 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
   std::vector<char> rigidMat(par_.materials.size());
   for (std::size_t m = 0; m < rigidMat.size(); ++m)
     rigidMat[m] = par_.materials[m].rigid;
-  std::vector<Packed> P(n);
+  static thread_local std::vector<Packed> P; // reused: no allocation in the step loop; workers use Pp
+  P.resize(n);
+  Packed* const Pw = P.data();
   bool anyStress = false;
 #pragma omp parallel for schedule(static) reduction(|| : anyStress) if (n >= 4096)
   for (std::size_t i = 0; i < n; ++i) {
-    Packed& q = P[i];
+    Packed& q = Pw[i];
     const double ir2 = 1.0 / (s.rho[i] * s.rho[i]);
     for (int k = 0; k < 3; ++k)
       q.x[k] = s.x[3 * i + k], q.v[k] = s.v[3 * i + k];
@@ -420,7 +432,10 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
     }
     anyStress = anyStress || G[static_cast<std::size_t>(s.material[i])] > 0.0;
   }
-  const Packed* Pp = P.data();
+  const Packed* Pp = Pw;
+  static thread_local std::vector<Scratch> scratchOfCaller; // the calling thread's; workers use the pointer
+  scratchOfCaller.resize(static_cast<std::size_t>(omp_get_max_threads()));
+  Scratch* const scratch = scratchOfCaller.data();
   const bool periodic = par_.periodic[0] || par_.periodic[1] || par_.periodic[2];
   const double av = par_.alpha, bv = par_.beta, xsph = par_.xsph;
   double maxSignal = 0.0;
@@ -431,13 +446,15 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
     const Packed& A = Pp[a];
     const double* sa = A.s;
     const bool solid = G[static_cast<std::size_t>(s.material[a])] > 0.0;
-    double acc[3] = {0, 0, 0}, dr = 0.0, de = 0.0, signal = A.c;
-    double grad[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}; // ∂_β v^α at [3α + β]
-    double xs[3] = {0, 0, 0};
-    const std::uint32_t* e = nb_.entry.data() + nb_.start[a];
-    const std::uint32_t* eEnd = nb_.entry.data() + nb_.start[a + 1];
-    for (; e < eEnd; ++e) {
-      const std::uint32_t code = *e;
+    double signal = A.c;
+    // Pass 1: the listed neighbours inside the pair's support, with their separations.
+    Scratch& w = scratch[omp_get_thread_num()];
+    const std::uint32_t first = nb_.start[a], count = nb_.start[a + 1] - first;
+    if (w.idx.size() < count)
+      w.resize(count);
+    std::size_t m = 0;
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const std::uint32_t code = nb_.entry[first + k];
       const Packed& B = Pp[code >> 5];
       double rx = A.x[0] - B.x[0], ry = A.x[1] - B.x[1], rz = A.x[2] - B.x[2];
       if (periodic && (code & 31u) != kNoShift) {
@@ -449,46 +466,56 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
       const double hb = 0.5 * (A.h + B.h);
       if (r2 >= hb * hb || r2 == 0.0)
         continue;
+      w.idx[m] = code >> 5;
+      w.rx[m] = rx, w.ry[m] = ry, w.rz[m] = rz, w.r2[m] = r2;
+      ++m;
+    }
+    // Pass 2: the pair terms, branch-free so that the compiler vectorises the loop.
+    double acc0 = 0, acc1 = 0, acc2 = 0, dr = 0, de = 0, sig = 0;
+    double g0 = 0, g1 = 0, g2 = 0, g3 = 0, g4 = 0, g5 = 0, g6 = 0, g7 = 0, g8 = 0, xs0 = 0, xs1 = 0, xs2 = 0;
+    const std::uint32_t* idx = w.idx.data();
+    const double *RX = w.rx.data(), *RY = w.ry.data(), *RZ = w.rz.data(), *R2 = w.r2.data();
+    const double sa0 = sa[0], sa1 = sa[1], sa2 = sa[2], sa3 = sa[3], sa4 = sa[4], sa5 = sa[5];
+    const double stressOn = anyStress ? 1.0 : 0.0, gradOn = solid ? 1.0 : 0.0;
+#pragma omp simd reduction(+ : acc0, acc1, acc2, dr, de, g0, g1, g2, g3, g4, g5, g6, g7, g8, xs0, xs1, xs2) reduction(max : sig)
+    for (std::size_t k = 0; k < m; ++k) {
+      const Packed& B = Pp[idx[k]];
+      const double rx = RX[k], ry = RY[k], rz = RZ[k], r2 = R2[k];
+      const double hb = 0.5 * (A.h + B.h), ih = 1.0 / hb;
       const double rr = std::sqrt(r2);
-      const double g = K::dWdr(rr, hb) / rr; // ∇_a W = g r_ab
+      const double g = Branchless<K>::gradOverR(rr * ih, ih); // ∇_a W = g r_ab
       const double vx = A.v[0] - B.v[0], vy = A.v[1] - B.v[1], vz = A.v[2] - B.v[2];
       const double vr = vx * rx + vy * ry + vz * rz;
-      double pi = 0.0;
-      if (vr < 0.0) {
-        const double mu = hb * vr / (r2 + 0.01 * hb * hb); // h̄ = support, as miluphcuda
-        pi = (-av * 0.5 * (A.c + B.c) * mu + bv * mu * mu) / (0.5 * (A.rho + B.rho));
-        signal = std::max(signal, A.c + B.c - 3.0 * vr / rr);
-      }
+      const double mu = hb * vr / (r2 + 0.01 * hb * hb); // h̄ = support, as miluphcuda
+      const double piRaw = (-av * 0.5 * (A.c + B.c) * mu + bv * mu * mu) / (0.5 * (A.rho + B.rho));
+      const double pi = vr < 0.0 ? piRaw : 0.0;
+      const double sgn = vr < 0.0 ? A.c + B.c - 3.0 * vr / rr : 0.0;
+      sig = sig > sgn ? sig : sgn;
       const double mg = B.m * g;
       const double f = mg * (A.pr + B.pr + pi);
-      acc[0] -= f * rx;
-      acc[1] -= f * ry;
-      acc[2] -= f * rz;
-      dr += mg * vr;                      // m_b v_ab · ∇_a W
-      de += mg * (A.pr + 0.5 * pi) * vr;
-      if (anyStress) {
-        // (S_a/ρ_a² + S_b/ρ_b²) · ∇_a W, and the stress power with the same pair terms so that
-        // energy is conserved exactly: −Σ m_b (S_a/ρ_a²) : (v_ab ⊗ ∇_a W).
-        const double t0 = sa[0] + B.s[0], t1 = sa[1] + B.s[1], t2 = sa[2] + B.s[2];
-        const double t3 = sa[3] + B.s[3], t4 = sa[4] + B.s[4], t5 = sa[5] + B.s[5];
-        acc[0] += mg * (t0 * rx + t3 * ry + t4 * rz);
-        acc[1] += mg * (t3 * rx + t1 * ry + t5 * rz);
-        acc[2] += mg * (t4 * rx + t5 * ry + t2 * rz);
-        de -= mg * (sa[0] * vx * rx + sa[1] * vy * ry + sa[2] * vz * rz + sa[3] * (vx * ry + vy * rx) +
-                    sa[4] * (vx * rz + vz * rx) + sa[5] * (vy * rz + vz * ry));
-      }
-      if (solid) {
-        const double w = -B.vol * g; // ∂_β v^α ≈ −Σ (m_b/ρ_b) v_ab^α ∂_β W
-        const double wx = w * vx, wy = w * vy, wz = w * vz;
-        grad[0] += wx * rx, grad[1] += wx * ry, grad[2] += wx * rz;
-        grad[3] += wy * rx, grad[4] += wy * ry, grad[5] += wy * rz;
-        grad[6] += wz * rx, grad[7] += wz * ry, grad[8] += wz * rz;
-      }
-      if (xsph > 0.0) {
-        const double w = xsph * B.m / (0.5 * (A.rho + B.rho)) * K::W(rr, hb);
-        xs[0] -= w * vx, xs[1] -= w * vy, xs[2] -= w * vz;
-      }
+      // (S_a/ρ_a² + S_b/ρ_b²) · ∇_a W, and the stress power with the same pair terms so that
+      // energy is conserved exactly: −Σ m_b (S_a/ρ_a²) : (v_ab ⊗ ∇_a W).
+      const double t0 = sa0 + B.s[0], t1 = sa1 + B.s[1], t2 = sa2 + B.s[2];
+      const double t3 = sa3 + B.s[3], t4 = sa4 + B.s[4], t5 = sa5 + B.s[5];
+      const double ms = mg * stressOn;
+      acc0 += -f * rx + ms * (t0 * rx + t3 * ry + t4 * rz);
+      acc1 += -f * ry + ms * (t3 * rx + t1 * ry + t5 * rz);
+      acc2 += -f * rz + ms * (t4 * rx + t5 * ry + t2 * rz);
+      dr += mg * vr; // m_b v_ab · ∇_a W
+      de += mg * (A.pr + 0.5 * pi) * vr -
+            ms * (sa0 * vx * rx + sa1 * vy * ry + sa2 * vz * rz + sa3 * (vx * ry + vy * rx) +
+                  sa4 * (vx * rz + vz * rx) + sa5 * (vy * rz + vz * ry));
+      const double wv = -B.vol * g * gradOn; // ∂_β v^α ≈ −Σ (m_b/ρ_b) v_ab^α ∂_β W
+      const double wx = wv * vx, wy = wv * vy, wz = wv * vz;
+      g0 += wx * rx, g1 += wx * ry, g2 += wx * rz;
+      g3 += wy * rx, g4 += wy * ry, g5 += wy * rz;
+      g6 += wz * rx, g7 += wz * ry, g8 += wz * rz;
+      const double wx2 = xsph * B.m / (0.5 * (A.rho + B.rho)) * Branchless<K>::value(rr * ih, ih);
+      xs0 -= wx2 * vx, xs1 -= wx2 * vy, xs2 -= wx2 * vz;
     }
+    const double acc[3] = {acc0, acc1, acc2}, xs[3] = {xs0, xs1, xs2};
+    const double grad[9] = {g0, g1, g2, g3, g4, g5, g6, g7, g8};
+    signal = std::max(signal, sig);
     const double* xa = A.x;
     const double* Sa = &s.S[6 * a];
     double ext[3] = {par_.gravity[0], par_.gravity[1], par_.gravity[2]};
