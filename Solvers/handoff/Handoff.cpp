@@ -1,0 +1,497 @@
+#include "handoff/Handoff.h"
+
+#include "common/CellList.h"
+#include "common/Error.h"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Fixed_alpha_shape_3.h>
+#include <CGAL/Fixed_alpha_shape_cell_base_3.h>
+#include <CGAL/Fixed_alpha_shape_vertex_base_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+namespace craterkit {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vbi = CGAL::Triangulation_vertex_base_with_info_3<std::size_t, K>;
+using Vb = CGAL::Fixed_alpha_shape_vertex_base_3<K, Vbi>;
+using Cb = CGAL::Fixed_alpha_shape_cell_base_3<K>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
+using Delaunay = CGAL::Delaunay_triangulation_3<K, Tds>;
+using AlphaShape = CGAL::Fixed_alpha_shape_3<Delaunay>;
+using Point = K::Point_3;
+
+double seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+// Cubic spline with support h (Kernels.h), as a weight.
+double weight(double r, double h) {
+  const double q = r / h;
+  if (q >= 1.0)
+    return 0.0;
+  const double t = 1.0 - q;
+  return q < 0.5 ? 6.0 * q * q * q - 6.0 * q * q + 1.0 : 2.0 * t * t * t;
+}
+
+Eigen::Vector3d vec(const std::vector<double>& a, std::size_t i) { return {a[3 * i], a[3 * i + 1], a[3 * i + 2]}; }
+
+} // namespace
+
+bool TargetRegion::contains(const double x[3]) const {
+  const double z = x[2] - surfaceHeight;
+  switch (shape) {
+  case Shape::Everywhere:
+    return true;
+  case Shape::Hemisphere:
+    return z <= 0.0 && x[0] * x[0] + x[1] * x[1] + z * z <= radius * radius;
+  case Shape::HalfSpace:
+    return z <= 0.0 && z >= -radius && std::abs(x[0]) <= radius && std::abs(x[1]) <= radius;
+  }
+  return false;
+}
+
+void HandoffParams::validate() const {
+  if (!(ejectaSpeedLimit > 0.0) || !std::isfinite(ejectaSpeedLimit))
+    throw InputError("ImpactHandoff: EjectaSpeedLimit must be a positive speed in m/s");
+  if (!(alphaRadius >= 0.0) || !std::isfinite(alphaRadius))
+    throw InputError("ImpactHandoff: Alpha must not be negative (0: automatic)");
+  if (minNeighbours < 1)
+    throw InputError("ImpactHandoff: the neighbour count must be at least 1");
+  if (!(ejectaDensity >= 0.0) || !std::isfinite(ejectaDensity))
+    throw InputError("ImpactHandoff: the ejecta grain density must not be negative (0: the bed's)");
+}
+
+HandoffTotals totalsOf(const ParticleSet& p, const std::vector<std::size_t>* subset) {
+  HandoffTotals t;
+  const std::size_t n = subset ? subset->size() : p.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = subset ? (*subset)[k] : k;
+    const double m = p.mass[i];
+    const double* x = &p.position[3 * i];
+    const double* v = &p.velocity[3 * i];
+    const double* w = &p.angularVelocity[3 * i];
+    const double I = 0.4 * m * p.radius[i] * p.radius[i];
+    t.mass += m;
+    for (int a = 0; a < 3; ++a)
+      t.momentum[a] += m * v[a];
+    t.angularMomentum[0] += m * (x[1] * v[2] - x[2] * v[1]) + I * w[0];
+    t.angularMomentum[1] += m * (x[2] * v[0] - x[0] * v[2]) + I * w[1];
+    t.angularMomentum[2] += m * (x[0] * v[1] - x[1] * v[0]) + I * w[2];
+  }
+  return t;
+}
+
+namespace {
+HandoffTotals sphTotals(const SphSnapshot& s, const std::vector<std::size_t>& subset) {
+  HandoffTotals t;
+  for (std::size_t i : subset) {
+    const double m = s.mass[i];
+    const double* x = &s.x[3 * i];
+    const double* v = &s.v[3 * i];
+    t.mass += m;
+    for (int a = 0; a < 3; ++a)
+      t.momentum[a] += m * v[a];
+    t.angularMomentum[0] += m * (x[1] * v[2] - x[2] * v[1]);
+    t.angularMomentum[1] += m * (x[2] * v[0] - x[0] * v[2]);
+    t.angularMomentum[2] += m * (x[0] * v[1] - x[1] * v[0]);
+  }
+  return t;
+}
+} // namespace
+
+HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const TargetRegion& region,
+                      const HandoffParams& params) {
+  params.validate();
+  HandoffResult out;
+  const std::size_t ns = sph.size();
+  if (ns == 0)
+    throw InputError("ImpactHandoff: the SPH input has no particles");
+  if (sph.x.size() != 3 * ns || sph.v.size() != 3 * ns)
+    throw InputError("ImpactHandoff: the SPH input needs positions, Velocity and Mass for every particle");
+  if (bed.size() == 0)
+    throw InputError("ImpactHandoff: the bed input has no particles");
+  for (std::size_t i = 0; i < ns; ++i) {
+    if (!(sph.mass[i] > 0.0) || !std::isfinite(sph.mass[i]))
+      throw InputError("ImpactHandoff: SPH particle " + std::to_string(i) + " has a non-positive Mass");
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(sph.x[3 * i + k]) || !std::isfinite(sph.v[3 * i + k]))
+        throw InputError("ImpactHandoff: SPH particle " + std::to_string(i) + " has a non-finite position or Velocity");
+  }
+
+  // 1. Split.
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::size_t> compact, ejecta;
+  for (std::size_t i = 0; i < ns; ++i) {
+    const double v2 = sph.v[3 * i] * sph.v[3 * i] + sph.v[3 * i + 1] * sph.v[3 * i + 1] + sph.v[3 * i + 2] * sph.v[3 * i + 2];
+    (v2 > params.ejectaSpeedLimit * params.ejectaSpeedLimit ? ejecta : compact).push_back(i);
+  }
+  if (compact.size() < 4)
+    throw InputError("ImpactHandoff: fewer than 4 SPH particles are slower than EjectaSpeedLimit (" +
+                     std::to_string(params.ejectaSpeedLimit) + " m/s): no compact material to build a shape from");
+  out.compactCount = compact.size();
+  out.ejectaCount = ejecta.size();
+  out.sphCompact = sphTotals(sph, compact);
+  out.sphEjecta = sphTotals(sph, ejecta);
+  out.seconds.split = seconds(t0);
+
+  // 2. Delaunay triangulation and alpha shape of the compact material.
+  t0 = std::chrono::steady_clock::now();
+  std::vector<std::pair<Point, std::size_t>> pts;
+  pts.reserve(compact.size());
+  for (std::size_t k = 0; k < compact.size(); ++k) {
+    const std::size_t i = compact[k];
+    pts.emplace_back(Point(sph.x[3 * i], sph.x[3 * i + 1], sph.x[3 * i + 2]), k);
+  }
+  Delaunay dt(pts.begin(), pts.end());
+  double alphaRadius = params.alphaRadius;
+  if (alphaRadius == 0.0) {
+    // Mean nearest-neighbour spacing: the nearest neighbour is always a Delaunay neighbour.
+    std::vector<double> nearest(compact.size(), INFINITY);
+    for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
+      const auto a = e->first->vertex(e->second), b = e->first->vertex(e->third);
+      const double d = std::sqrt(CGAL::squared_distance(a->point(), b->point()));
+      nearest[a->info()] = std::min(nearest[a->info()], d);
+      nearest[b->info()] = std::min(nearest[b->info()], d);
+    }
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (double d : nearest)
+      if (std::isfinite(d))
+        sum += d, ++count;
+    if (count == 0 || !(sum > 0.0))
+      throw InputError("ImpactHandoff: the compact SPH particles are all at one point");
+    alphaRadius = 1.75 * sum / static_cast<double>(count);
+  }
+  out.alphaRadius = alphaRadius;
+  AlphaShape shape(dt, alphaRadius * alphaRadius); // CGAL's alpha is the squared radius
+  std::size_t interior = 0;
+  for (auto c = shape.finite_cells_begin(); c != shape.finite_cells_end(); ++c)
+    if (shape.classify(c) == AlphaShape::INTERIOR) {
+      ++interior;
+      const Point& a = c->vertex(0)->point();
+      out.shapeVolume += std::abs(CGAL::volume(a, c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point()));
+    }
+  if (interior == 0)
+    throw InputError("ImpactHandoff: the alpha shape is empty: Alpha (" + std::to_string(alphaRadius) +
+                     " m) is smaller than the SPH particle spacing");
+  // Boundary triangles, oriented outwards (away from the interior cell).
+  {
+    std::vector<AlphaShape::Facet> facets;
+    shape.get_alpha_shape_facets(std::back_inserter(facets), AlphaShape::REGULAR);
+    std::map<AlphaShape::Vertex_handle, long long> index;
+    auto id = [&](AlphaShape::Vertex_handle v) {
+      auto it = index.find(v);
+      if (it != index.end())
+        return it->second;
+      const long long k = static_cast<long long>(index.size());
+      index.emplace(v, k);
+      out.surfacePoints.insert(out.surfacePoints.end(), {v->point().x(), v->point().y(), v->point().z()});
+      return k;
+    };
+    for (AlphaShape::Facet f : facets) {
+      if (shape.is_infinite(f.first) || shape.classify(f.first) != AlphaShape::INTERIOR)
+        f = shape.mirror_facet(f);
+      const auto c = f.first;
+      const int i = f.second;
+      AlphaShape::Vertex_handle v[3] = {c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
+      const Point& opposite = c->vertex(i)->point();
+      if (CGAL::orientation(v[0]->point(), v[1]->point(), v[2]->point(), opposite) == CGAL::POSITIVE)
+        std::swap(v[1], v[2]); // the fourth vertex (inside) must be on the negative side
+      for (auto& vh : v)
+        out.triangles.push_back(id(vh));
+    }
+  }
+  out.seconds.alphaShape = seconds(t0);
+
+  // 3. Carve. A particle of the SPH lattice stands for the volume around it, so the material
+  // reaches half a spacing beyond the shape through the outer particles: a bed particle
+  // within half a spacing of a compact SPH particle is kept too.
+  t0 = std::chrono::steady_clock::now();
+  double hmax = 0.0;
+  std::vector<double> hs(compact.size()), cx(3 * compact.size());
+  for (std::size_t k = 0; k < compact.size(); ++k) {
+    const std::size_t i = compact[k];
+    hs[k] = i < sph.h.size() && sph.h[i] > 0.0 ? sph.h[i] : 2.0 * alphaRadius;
+    hmax = std::max(hmax, hs[k]);
+    for (int a = 0; a < 3; ++a)
+      cx[3 * k + a] = sph.x[3 * i + a];
+  }
+  CellList cells;
+  cells.build(cx.data(), compact.size(), hmax);
+  const double halfSpacing = 0.5 * alphaRadius / 1.75;
+  auto nearCompact = [&](const double* x) {
+    bool found = false;
+    cells.forEachCandidate(x, halfSpacing, [&](std::size_t k) {
+      const double d2 = (cx[3 * k] - x[0]) * (cx[3 * k] - x[0]) + (cx[3 * k + 1] - x[1]) * (cx[3 * k + 1] - x[1]) +
+                        (cx[3 * k + 2] - x[2]) * (cx[3 * k + 2] - x[2]);
+      found = found || d2 < halfSpacing * halfSpacing;
+    });
+    return found;
+  };
+  std::vector<std::size_t> keep, mapped;
+  std::size_t inRegion = 0;
+  AlphaShape::Cell_handle hint;
+  for (std::size_t i = 0; i < bed.size(); ++i) {
+    const double* x = &bed.position[3 * i];
+    if (!region.contains(x)) {
+      keep.push_back(i);
+      continue;
+    }
+    ++inRegion;
+    hint = shape.locate(Point(x[0], x[1], x[2]), hint);
+    if ((!shape.is_infinite(hint) && shape.classify(hint) == AlphaShape::INTERIOR) || nearCompact(x)) {
+      mapped.push_back(keep.size());
+      keep.push_back(i);
+    } else {
+      ++out.bedRemoved;
+    }
+  }
+  if (inRegion == 0)
+    throw InputError("ImpactHandoff: no bed particle lies in the region the SPH target occupied: the bed and the "
+                     "SPH target do not overlap");
+  out.seconds.carve = seconds(t0);
+
+  // The bed should cover the SPH target; say so when it does not.
+  {
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (std::size_t i = 0; i < bed.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        lo[k] = std::min(lo[k], bed.position[3 * i + k]), hi[k] = std::max(hi[k], bed.position[3 * i + k]);
+    std::size_t outside = 0;
+    for (std::size_t i : compact) {
+      const double* x = &sph.x[3 * i];
+      bool in = true;
+      for (int k = 0; k < 3; ++k)
+        in = in && x[k] >= lo[k] - alphaRadius && x[k] <= hi[k] + alphaRadius;
+      outside += in ? 0 : 1;
+    }
+    if (outside > compact.size() / 100)
+      out.warnings.push_back(std::to_string(outside) + " of " + std::to_string(compact.size()) +
+                             " compact SPH particles lie outside the bed: the bed and the SPH target do not cover "
+                             "the same region");
+  }
+
+  ParticleSet& p = out.particles;
+  p.reserve(keep.size() + ejecta.size());
+  for (std::size_t i : keep) {
+    p.position.insert(p.position.end(), &bed.position[3 * i], &bed.position[3 * i] + 3);
+    p.velocity.insert(p.velocity.end(), &bed.velocity[3 * i], &bed.velocity[3 * i] + 3);
+    p.angularVelocity.insert(p.angularVelocity.end(), &bed.angularVelocity[3 * i], &bed.angularVelocity[3 * i] + 3);
+    p.radius.push_back(bed.radius[i]);
+    p.mass.push_back(bed.mass[i]);
+    p.density.push_back(bed.density[i]);
+    p.material.push_back(bed.material[i]);
+    p.id.push_back(bed.id[i]);
+  }
+  out.origin.assign(keep.size(), 0);
+  out.bedMapped = mapped.size();
+
+  // 4. Map velocity and spin from the compact SPH particles: a weighted linear fit
+  // v(x') ≈ v̄ + G (x' − x̄) over the SPH particles within one support radius (exact for
+  // rigid motions), Shepard's average where the fit is ill-posed, the nearest particle where
+  // none is in reach.
+  t0 = std::chrono::steady_clock::now();
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t q = 0; q < mapped.size(); ++q) {
+    const std::size_t j = mapped[q];
+    const Eigen::Vector3d x = vec(p.position, j);
+    double wsum = 0.0;
+    Eigen::Vector3d xbar = Eigen::Vector3d::Zero(), vbar = Eigen::Vector3d::Zero();
+    std::vector<std::pair<std::size_t, double>> near;
+    std::size_t nearest = 0;
+    double best = INFINITY;
+    cells.forEachCandidate(x.data(), hmax, [&](std::size_t k) {
+      const Eigen::Vector3d d = vec(cx, k) - x;
+      const double r = d.norm();
+      if (r < best)
+        best = r, nearest = k;
+      const double w = weight(r, hs[k]) * sph.mass[compact[k]];
+      if (w > 0.0)
+        near.emplace_back(k, w);
+    });
+    Eigen::Vector3d v, omega = Eigen::Vector3d::Zero();
+    if (static_cast<int>(near.size()) < params.minNeighbours || near.empty()) {
+      if (!std::isfinite(best)) { // nothing within hmax: search everything (rare)
+        for (std::size_t k = 0; k < compact.size(); ++k) {
+          const double r = (vec(cx, k) - x).norm();
+          if (r < best)
+            best = r, nearest = k;
+        }
+      }
+      v = vec(sph.v, compact[nearest]);
+    } else {
+      for (const auto& [k, w] : near) {
+        wsum += w;
+        xbar += w * vec(cx, k);
+        vbar += w * vec(sph.v, compact[k]);
+      }
+      xbar /= wsum;
+      vbar /= wsum;
+      v = vbar;
+      if (near.size() >= 4) {
+        Eigen::Matrix3d A = Eigen::Matrix3d::Zero(), B = Eigen::Matrix3d::Zero();
+        for (const auto& [k, w] : near) {
+          const Eigen::Vector3d d = vec(cx, k) - xbar;
+          A += w * d * d.transpose();
+          B += w * (vec(sph.v, compact[k]) - vbar) * d.transpose();
+        }
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(A, Eigen::EigenvaluesOnly);
+        const Eigen::Vector3d ev = eig.eigenvalues(); // ascending
+        if (ev(0) > 1e-6 * ev(2)) { // the neighbours span 3D: the fit is well posed
+          const Eigen::Matrix3d G = B * A.inverse();
+          v = vbar + G * (x - xbar);
+          omega = 0.5 * Eigen::Vector3d(G(2, 1) - G(1, 2), G(0, 2) - G(2, 0), G(1, 0) - G(0, 1));
+        }
+      }
+    }
+    for (int a = 0; a < 3; ++a) {
+      p.velocity[3 * j + a] = v(a);
+      p.angularVelocity[3 * j + a] = omega(a);
+    }
+  }
+  out.seconds.map = seconds(t0);
+
+  // Conservation: the mapped set carries the compact SPH material's momentum and angular
+  // momentum exactly.
+  t0 = std::chrono::steady_clock::now();
+  out.demBefore = totalsOf(p, &mapped);
+  if (!mapped.empty()) {
+    const HandoffTotals before = out.demBefore;
+    Eigen::Vector3d dV;
+    for (int a = 0; a < 3; ++a)
+      dV(a) = (out.sphCompact.momentum[a] - before.momentum[a]) / before.mass;
+    for (std::size_t j : mapped)
+      for (int a = 0; a < 3; ++a)
+        p.velocity[3 * j + a] += dV(a);
+    const HandoffTotals shifted = totalsOf(p, &mapped);
+    Eigen::Vector3d cm = Eigen::Vector3d::Zero();
+    for (std::size_t j : mapped)
+      cm += p.mass[j] * vec(p.position, j);
+    cm /= shifted.mass;
+    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+    for (std::size_t j : mapped) {
+      const Eigen::Vector3d r = vec(p.position, j) - cm;
+      I += p.mass[j] * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    }
+    Eigen::Vector3d dL;
+    for (int a = 0; a < 3; ++a)
+      dL(a) = out.sphCompact.angularMomentum[a] - shifted.angularMomentum[a];
+    Eigen::FullPivLU<Eigen::Matrix3d> lu(I);
+    if (lu.isInvertible()) {
+      const Eigen::Vector3d dW = lu.solve(dL);
+      for (std::size_t j : mapped) {
+        const Eigen::Vector3d add = dW.cross(vec(p.position, j) - cm);
+        for (int a = 0; a < 3; ++a)
+          p.velocity[3 * j + a] += add(a);
+      }
+    } else {
+      out.warnings.push_back("the mapped bed particles are collinear: angular momentum could not be corrected");
+    }
+  } else {
+    out.warnings.push_back("no bed particle lies inside the alpha shape: the compact SPH material's momentum is lost");
+  }
+  out.demMapped = totalsOf(p, &mapped);
+  out.seconds.correct = seconds(t0);
+
+  // 5. Ejecta as particles of equal mass and velocity, moved forward along their velocity
+  // until they overlap nothing by more than 1 % of their radius.
+  t0 = std::chrono::steady_clock::now();
+  double rhoGrain = params.ejectaDensity, rmax = 0.0;
+  if (rhoGrain == 0.0) {
+    double m = 0.0, vol = 0.0;
+    for (std::size_t i = 0; i < bed.size(); ++i)
+      m += bed.mass[i], vol += bed.mass[i] / bed.density[i];
+    rhoGrain = m / vol;
+  }
+  const int ejectaMat = params.ejectaMaterial >= 0 ? params.ejectaMaterial : bed.material[0];
+  std::int64_t nextId = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    nextId = std::max(nextId, p.id[i] + 1), rmax = std::max(rmax, p.radius[i]);
+  std::vector<double> er(ejecta.size());
+  for (std::size_t k = 0; k < ejecta.size(); ++k) {
+    er[k] = std::cbrt(3.0 * sph.mass[ejecta[k]] / (4.0 * M_PI * rhoGrain));
+    rmax = std::max(rmax, er[k]);
+  }
+  const double cell = 2.0 * rmax;
+  // Cells by integer coordinates: neighbours are found by offsetting the integers, never by
+  // re-dividing shifted positions (which can round into the wrong cell).
+  auto cellOf = [&](const double* x, long long c[3]) {
+    for (int a = 0; a < 3; ++a)
+      c[a] = static_cast<long long>(std::floor(x[a] / cell));
+  };
+  auto keyOf = [](long long a, long long b, long long c) {
+    return (a * 73856093LL) ^ (b * 19349663LL) ^ (c * 83492791LL);
+  };
+  auto key = [&](const double* x) {
+    long long c[3];
+    cellOf(x, c);
+    return keyOf(c[0], c[1], c[2]);
+  };
+  std::unordered_multimap<long long, std::size_t> grid;
+  grid.reserve(p.size() + ejecta.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    grid.emplace(key(&p.position[3 * i]), i);
+  auto worstOverlap = [&](const double* x, double r) {
+    double worst = 0.0;
+    long long c[3];
+    cellOf(x, c);
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          auto range = grid.equal_range(keyOf(c[0] + dx, c[1] + dy, c[2] + dz));
+          for (auto it = range.first; it != range.second; ++it) {
+            const std::size_t j = it->second;
+            const double d = std::sqrt((x[0] - p.position[3 * j]) * (x[0] - p.position[3 * j]) +
+                                       (x[1] - p.position[3 * j + 1]) * (x[1] - p.position[3 * j + 1]) +
+                                       (x[2] - p.position[3 * j + 2]) * (x[2] - p.position[3 * j + 2]));
+            worst = std::max(worst, (r + p.radius[j] - d) / std::min(r, p.radius[j]));
+          }
+        }
+    return worst;
+  };
+  std::size_t unresolved = 0;
+  for (std::size_t k = 0; k < ejecta.size(); ++k) {
+    const std::size_t i = ejecta[k];
+    double x[3] = {sph.x[3 * i], sph.x[3 * i + 1], sph.x[3 * i + 2]};
+    const double* v = &sph.v[3 * i];
+    const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    int tries = 0;
+    while (worstOverlap(x, er[k]) > 0.01 && tries < 400) {
+      for (int a = 0; a < 3; ++a)
+        x[a] += 0.25 * er[k] * v[a] / speed; // along v: r × v, hence L, unchanged
+      ++tries;
+    }
+    if (tries == 400)
+      ++unresolved;
+    p.position.insert(p.position.end(), x, x + 3);
+    p.velocity.insert(p.velocity.end(), v, v + 3);
+    p.angularVelocity.insert(p.angularVelocity.end(), {0.0, 0.0, 0.0});
+    p.radius.push_back(er[k]);
+    p.mass.push_back(sph.mass[i]);
+    p.density.push_back(rhoGrain);
+    p.material.push_back(ejectaMat);
+    p.id.push_back(nextId++);
+    out.origin.push_back(1);
+    grid.emplace(key(x), p.size() - 1);
+  }
+  if (unresolved > 0)
+    out.warnings.push_back(std::to_string(unresolved) + " ejecta particles still overlap a neighbour by more than 1 % of a radius");
+  std::vector<std::size_t> ej;
+  for (std::size_t j = keep.size(); j < p.size(); ++j)
+    ej.push_back(j);
+  out.demEjecta = totalsOf(p, &ej);
+  out.seconds.ejecta = seconds(t0);
+  return out;
+}
+
+} // namespace craterkit

@@ -1,0 +1,82 @@
+// The SPH → DEM hand-off of the hybrid method (PHYSICS.md §3; issue: ImpactHandoff).
+//
+// 1. Split the SPH particles into compact material (|v| ≤ EjectaSpeedLimit) and ejecta.
+// 2. Alpha shape (CGAL Fixed_alpha_shape_3; α is the squared radius in CGAL's convention,
+//    the radius r_α here) of the compact particles; its boundary is returned as triangles.
+// 3. Carve the settled bed: inside the region the SPH target occupied before the impact, a
+//    bed particle is kept only if its centre lies inside the shape or within half a particle
+//    spacing of a compact SPH particle (the volume an outer SPH particle stands for); the rest
+//    is the cavity the SPH stage opened. Bed particles outside that region are kept as they are.
+// 4. Map velocities onto the kept bed particles inside the region: a kernel-weighted linear
+//    fit of the compact SPH velocities within one support radius (exact for rigid motions;
+//    Shepard's average where the fit is ill-posed, the nearest SPH particle's where none is in
+//    reach); spin ω = ½ ∇×v from the same fit. Then
+//    correct so the mapped particles carry exactly the compact SPH material's linear and
+//    angular momentum (about the origin): a uniform velocity shift, then a rigid rotation
+//    about their centre of mass (which leaves the linear momentum unchanged).
+// 5. Ejecta become DEM particles of equal mass and velocity (grain density of the bed), at
+//    their SPH positions, moved forward along their own velocity (which changes neither
+//    momentum nor angular momentum) until they overlap nothing by more than 1 % of a radius.
+#pragma once
+
+#include "common/ParticleSet.h"
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace craterkit {
+
+struct SphSnapshot {
+  std::vector<double> x, v;  // 3 per particle
+  std::vector<double> mass;  // kg
+  std::vector<double> h;     // support radius, m (0: unknown)
+  std::size_t size() const { return mass.size(); }
+};
+
+// The region the SPH target filled before the impact (surface z = surfaceHeight).
+struct TargetRegion {
+  enum class Shape { Hemisphere, HalfSpace, Everywhere } shape = Shape::Everywhere;
+  double radius = 0.0;        // hemisphere radius or half-width and depth of the block
+  double surfaceHeight = 0.0;
+  bool contains(const double x[3]) const;
+};
+
+struct HandoffParams {
+  double ejectaSpeedLimit = 1.0; // m/s
+  double alphaRadius = 0.0;      // m; 0: 1.75 × the mean nearest-neighbour spacing of the compact set
+  int minNeighbours = 1;         // below this many SPH particles in the support: the nearest one's velocity
+  double ejectaDensity = 0.0;    // kg/m³ of ejecta grains; 0: the bed's mean grain density
+  int ejectaMaterial = -1;       // -1: the bed's first particle's material
+  void validate() const;
+};
+
+struct HandoffTotals {
+  double mass = 0.0;
+  std::array<double, 3> momentum{}, angularMomentum{}; // angular about the origin, spin included
+};
+
+struct HandoffResult {
+  ParticleSet particles;              // kept bed, then ejecta
+  std::vector<int> origin;            // 0 bed, 1 ejecta
+  std::vector<double> surfacePoints;  // alpha-shape boundary: 3 per vertex
+  std::vector<long long> triangles;   // 3 vertex indices per triangle, outward normals
+  double alphaRadius = 0.0;
+  std::size_t compactCount = 0, ejectaCount = 0, bedRemoved = 0, bedMapped = 0;
+  HandoffTotals sphCompact, sphEjecta, demMapped, demEjecta, demBefore; // demBefore: mapped set before correction
+  double shapeVolume = 0.0;           // volume of the alpha shape's interior cells, m³
+  std::vector<std::string> warnings;
+  struct Timing {
+    double split = 0, alphaShape = 0, carve = 0, map = 0, correct = 0, ejecta = 0;
+  } seconds;
+};
+
+// Throws InputError naming the problem (empty compact set, bad parameters, empty shape, no
+// overlap between the bed and the SPH target).
+HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const TargetRegion& region,
+                      const HandoffParams& params);
+
+HandoffTotals totalsOf(const ParticleSet& p, const std::vector<std::size_t>* subset = nullptr);
+
+} // namespace craterkit

@@ -1,0 +1,284 @@
+// The SPH → DEM hand-off on synthetic SPH fields with known answers: conservation of
+// momentum and angular momentum, fidelity of the mapped velocity field, carving of a known
+// cavity, ejecta, and named errors.
+#include "common/Error.h"
+#include "handoff/Handoff.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+
+using namespace craterkit;
+
+namespace {
+
+using Field = std::function<void(const double* x, double* v)>;
+
+constexpr double kR = 1.0;          // SPH target: hemisphere of radius 1 m, surface z = 0
+constexpr double kDx = 1.0 / 30.0;  // SPH lattice spacing
+constexpr double kRho = 1190.0;     // bulk density of the target and the bed
+
+// SPH particles on a cubic lattice filling the hemisphere, minus an optional cavity (a
+// hemisphere of radius `cavity` at the origin), moving with `field`.
+SphSnapshot lattice(const Field& field, double cavity = 0.0) {
+  SphSnapshot s;
+  const int n = static_cast<int>(kR / kDx);
+  for (int i = -n; i < n; ++i)
+    for (int j = -n; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const double x[3] = {(i + 0.5) * kDx, (j + 0.5) * kDx, -(k + 0.5) * kDx};
+        const double r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+        if (r2 > kR * kR || r2 < cavity * cavity)
+          continue;
+        double v[3];
+        field(x, v);
+        s.x.insert(s.x.end(), x, x + 3);
+        s.v.insert(s.v.end(), v, v + 3);
+        s.mass.push_back(kRho * kDx * kDx * kDx);
+        s.h.push_back(2.5 * kDx);
+      }
+  return s;
+}
+
+// A bed at rest: spheres of radius rb on a simple cubic lattice (packing fraction π/6) of the
+// same bulk density, in a box wider than the hemisphere.
+ParticleSet bed(double rb = 0.025) {
+  ParticleSet p;
+  const double rhoGrain = kRho / (M_PI / 6.0), half = 1.2 * kR;
+  const int n = static_cast<int>(half / (2.0 * rb));
+  std::int64_t id = 0;
+  for (int i = -n; i < n; ++i)
+    for (int j = -n; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const double x[3] = {(i + 0.5) * 2.0 * rb, (j + 0.5) * 2.0 * rb, -(k + 0.5) * 2.0 * rb};
+        p.add(x, rb, rhoGrain, 0, id++);
+      }
+  return p;
+}
+
+TargetRegion hemisphere() {
+  TargetRegion r;
+  r.shape = TargetRegion::Shape::Hemisphere;
+  r.radius = kR;
+  return r;
+}
+
+double relErr(const std::array<double, 3>& a, const std::array<double, 3>& b, double scale) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])) / scale;
+}
+
+struct Check {
+  HandoffResult result;
+  double rmsError = 0.0, rmsSpeed = 0.0, pErr = 0.0, lErr = 0.0;
+};
+
+Check run(const SphSnapshot& sph, const Field& field, const HandoffParams& params = {}) {
+  Check c;
+  c.result = handoff(sph, bed(), hemisphere(), params);
+  const HandoffResult& r = c.result;
+  // SPH totals against the DEM's (mapped bed + ejecta; the rest of the bed is at rest).
+  HandoffTotals dem = totalsOf(r.particles);
+  std::array<double, 3> P{}, L{};
+  for (int a = 0; a < 3; ++a)
+    P[a] = r.sphCompact.momentum[a] + r.sphEjecta.momentum[a], L[a] = r.sphCompact.angularMomentum[a] + r.sphEjecta.angularMomentum[a];
+  double pScale = 0.0, mTot = 0.0;
+  for (std::size_t i = 0; i < sph.size(); ++i) {
+    const double* v = &sph.v[3 * i];
+    pScale += sph.mass[i] * std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    mTot += sph.mass[i];
+  }
+  c.pErr = relErr(dem.momentum, P, pScale);
+  c.lErr = relErr(dem.angularMomentum, L, pScale * kR);
+  // Fidelity at the mapped bed particles (inside the region, kept), against the field.
+  double e2 = 0.0, s2 = 0.0;
+  std::size_t n = 0;
+  const TargetRegion region = hemisphere();
+  for (std::size_t i = 0; i < r.particles.size(); ++i) {
+    if (r.origin[i] != 0 || !region.contains(&r.particles.position[3 * i]))
+      continue;
+    double v[3];
+    field(&r.particles.position[3 * i], v);
+    const double speed2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if (speed2 > 1.0) // ejecta region of the Z-model: its bed particles take what is left
+      continue;
+    for (int a = 0; a < 3; ++a) {
+      const double d = r.particles.velocity[3 * i + a] - v[a];
+      e2 += d * d;
+    }
+    s2 += speed2;
+    ++n;
+  }
+  c.rmsError = std::sqrt(e2 / n);
+  c.rmsSpeed = std::sqrt(s2 / n);
+  return c;
+}
+
+// Maxwell Z-model (Z = 3) from a point at the surface: u_R = α / R^Z, u_θ = u_R (Z−2) sinθ /
+// (1 + cosθ), θ from the downward axis; α chosen so that the speed is 1 m/s at R = 0.25 m.
+void zModel(const double* x, double* v) {
+  const double Z = 3.0, R = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+  const double a = std::pow(0.25, Z);
+  const double uR = a / std::pow(R, Z);
+  const double cosT = -x[2] / R, sinT = std::sqrt(std::max(0.0, 1.0 - cosT * cosT));
+  const double uT = uR * (Z - 2.0) * sinT / (1.0 + cosT);
+  // Unit vectors: e_R = x / R; e_θ points away from the downward axis (towards +z as θ grows).
+  const double rho = std::sqrt(x[0] * x[0] + x[1] * x[1]);
+  double eT[3] = {0.0, 0.0, 0.0};
+  if (rho > 0.0)
+    eT[0] = cosT * x[0] / rho, eT[1] = cosT * x[1] / rho, eT[2] = sinT;
+  for (int k = 0; k < 3; ++k)
+    v[k] = uR * x[k] / R + uT * eT[k];
+}
+
+} // namespace
+
+TEST(Handoff, UniformTranslationConservesMomentumAndMass) {
+  const Field f = [](const double*, double* v) { v[0] = 0.1, v[1] = -0.05, v[2] = -0.2; };
+  const SphSnapshot sph = lattice(f);
+  const Check c = run(sph, f);
+  const double ratio = c.result.demMapped.mass / c.result.sphCompact.mass;
+  std::printf("translation: %zu SPH, %zu bed mapped, %zu removed; |dP| %.1e, |dL| %.1e (relative); "
+              "DEM/SPH mass %.3f; alpha %.4f m; rms error %.1e of rms speed\n",
+              sph.size(), c.result.bedMapped, c.result.bedRemoved, c.pErr, c.lErr, ratio, c.result.alphaRadius,
+              c.rmsError / c.rmsSpeed);
+  EXPECT_EQ(c.result.ejectaCount, 0u);
+  EXPECT_LT(c.pErr, 1e-10);
+  EXPECT_LT(c.lErr, 1e-10);
+  EXPECT_NEAR(ratio, 1.0, 0.05);
+  // A uniform field is mapped exactly, then scaled by M_SPH / M_DEM so that the momentum is the
+  // SPH's (plus a slight turn: the bed's centre of mass is not quite the SPH's, so the same
+  // momentum carries a different angular momentum): the error is that of the mass ratio.
+  const double expected = std::abs(1.0 / ratio - 1.0) * c.rmsSpeed;
+  EXPECT_NEAR(c.rmsError, expected, 0.02 * expected);
+  EXPECT_LT(c.rmsError, 0.05 * c.rmsSpeed);
+  // The shape of an unperturbed lattice: its volume is that of the lattice points' hull-like
+  // body, below N dx³ by about half a spacing over the surface.
+  const double latticeVolume = static_cast<double>(sph.size()) * kDx * kDx * kDx;
+  EXPECT_GT(c.result.shapeVolume, 0.85 * latticeVolume);
+  EXPECT_LT(c.result.shapeVolume, latticeVolume);
+  EXPECT_GT(c.result.triangles.size(), 1000u);
+}
+
+TEST(Handoff, RigidRotationIsMappedFaithfullyAndConserved) {
+  const Field f = [](const double* x, double* v) {
+    const double w[3] = {0.1, -0.2, 0.5}; // rad/s: at most 0.55 m/s inside the unit hemisphere
+    v[0] = w[1] * x[2] - w[2] * x[1], v[1] = w[2] * x[0] - w[0] * x[2], v[2] = w[0] * x[1] - w[1] * x[0];
+  };
+  const Check c = run(lattice(f), f);
+  std::printf("rotation: |dP| %.1e, |dL| %.1e, rms error %.2e of rms speed %.3f m/s\n", c.pErr, c.lErr,
+              c.rmsError / c.rmsSpeed, c.rmsSpeed);
+  EXPECT_LT(c.pErr, 1e-10);
+  EXPECT_LT(c.lErr, 1e-10);
+  EXPECT_LT(c.rmsError, 0.05 * c.rmsSpeed);
+  // The mapped spins are the rotation rate.
+  const HandoffResult& r = c.result;
+  double wz = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < r.particles.size(); ++i)
+    if (r.origin[i] == 0 && hemisphere().contains(&r.particles.position[3 * i]) && r.particles.position[3 * i + 2] < -0.2)
+      wz += r.particles.angularVelocity[3 * i + 2], ++n;
+  EXPECT_NEAR(wz / n, 0.5, 0.01);
+}
+
+TEST(Handoff, ZModelFlowAndItsEjecta) {
+  const SphSnapshot sph = lattice(zModel);
+  const Check c = run(sph, zModel);
+  const HandoffResult& r = c.result;
+  // Ejecta: count and mass of the SPH particles faster than the limit.
+  std::size_t fast = 0;
+  double fastMass = 0.0;
+  for (std::size_t i = 0; i < sph.size(); ++i) {
+    const double* v = &sph.v[3 * i];
+    if (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] > 1.0)
+      ++fast, fastMass += sph.mass[i];
+  }
+  std::size_t ejecta = 0;
+  double ejectaMass = 0.0;
+  for (std::size_t i = 0; i < r.particles.size(); ++i)
+    if (r.origin[i] == 1)
+      ++ejecta, ejectaMass += r.particles.mass[i];
+  // No new particle overlaps another by more than 1 % of its radius (brute force).
+  double worst = 0.0;
+  for (std::size_t i = 0; i < r.particles.size(); ++i) {
+    if (r.origin[i] != 1)
+      continue;
+    for (std::size_t j = 0; j < r.particles.size(); ++j) {
+      if (j == i)
+        continue;
+      double d2 = 0.0;
+      for (int a = 0; a < 3; ++a)
+        d2 += (r.particles.position[3 * i + a] - r.particles.position[3 * j + a]) *
+              (r.particles.position[3 * i + a] - r.particles.position[3 * j + a]);
+      const double overlap = r.particles.radius[i] + r.particles.radius[j] - std::sqrt(d2);
+      worst = std::max(worst, overlap / r.particles.radius[i]);
+    }
+  }
+  std::printf("Z-model: %zu ejecta (%.3f kg) of %zu SPH; |dP| %.1e, |dL| %.1e; rms error %.2e of rms speed; "
+              "worst ejecta overlap %.2e radii; %zu warnings\n",
+              ejecta, ejectaMass, sph.size(), c.pErr, c.lErr, c.rmsError / c.rmsSpeed, worst, r.warnings.size());
+  EXPECT_GT(fast, 10u);
+  EXPECT_EQ(ejecta, fast);
+  EXPECT_NEAR(ejectaMass, fastMass, 1e-12 * fastMass);
+  EXPECT_LE(worst, 0.01);
+  EXPECT_LT(c.pErr, 1e-10);
+  EXPECT_LT(c.lErr, 1e-10);
+  EXPECT_LT(c.rmsError, 0.05 * c.rmsSpeed);
+}
+
+TEST(Handoff, CarvesAHemisphericalCavity) {
+  const Field still = [](const double*, double* v) { v[0] = v[1] = v[2] = 0.0; };
+  const double cavity = 0.4, rb = 0.025;
+  const HandoffResult r = handoff(lattice(still, cavity), bed(rb), hemisphere(), HandoffParams{});
+  const ParticleSet full = bed(rb);
+  // Every bed particle in the region: removed iff inside the cavity, allowing one particle
+  // radius plus half an SPH spacing at its edge.
+  std::vector<char> kept(full.size(), 0);
+  for (std::size_t i = 0; i < r.particles.size(); ++i)
+    if (r.origin[i] == 0)
+      kept[static_cast<std::size_t>(r.particles.id[i])] = 1;
+  std::size_t wrongRemoved = 0, wrongKept = 0, removed = 0;
+  const double tol = rb + 0.5 * kDx;
+  for (std::size_t i = 0; i < full.size(); ++i) {
+    const double* x = &full.position[3 * i];
+    const double d = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    if (!kept[i])
+      ++removed;
+    if (d < cavity - tol && kept[i])
+      ++wrongKept;
+    if (d > cavity + tol && d < kR - tol && !kept[i])
+      ++wrongRemoved;
+  }
+  std::printf("cavity: %zu removed; %zu kept inside the cavity, %zu removed outside it\n", removed, wrongKept, wrongRemoved);
+  EXPECT_EQ(wrongKept, 0u);
+  EXPECT_EQ(wrongRemoved, 0u);
+  EXPECT_GT(removed, 1000u);
+}
+
+TEST(Handoff, BadInputGetsNamedErrors) {
+  const Field fast = [](const double*, double* v) { v[0] = 5.0, v[1] = v[2] = 0.0; };
+  const Field still = [](const double*, double* v) { v[0] = v[1] = v[2] = 0.0; };
+  auto message = [](const SphSnapshot& s, const ParticleSet& b, HandoffParams p) -> std::string {
+    try {
+      handoff(s, b, hemisphere(), p);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const ParticleSet b = bed(0.05);
+  EXPECT_NE(message(lattice(fast), b, {}).find("no compact material"), std::string::npos);
+  HandoffParams tiny;
+  tiny.alphaRadius = 0.2 * kDx;
+  EXPECT_NE(message(lattice(still), b, tiny).find("alpha shape is empty"), std::string::npos);
+  ParticleSet far = b;
+  for (std::size_t i = 0; i < far.size(); ++i)
+    far.position[3 * i] += 100.0;
+  EXPECT_NE(message(lattice(still), far, {}).find("do not overlap"), std::string::npos);
+  HandoffParams bad;
+  bad.ejectaSpeedLimit = -1.0;
+  EXPECT_NE(message(lattice(still), b, bad).find("EjectaSpeedLimit"), std::string::npos);
+  EXPECT_NE(message(SphSnapshot{}, b, {}).find("no particles"), std::string::npos);
+}
