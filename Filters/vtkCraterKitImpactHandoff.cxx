@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 vtkStandardNewMacro(vtkCraterKitImpactHandoff);
 
@@ -114,6 +115,32 @@ int vtkCraterKitImpactHandoff::RequestData(
     p.alphaRadius = this->Alpha;
     p.minNeighbours = this->MinNeighbours;
     p.ejectaDensity = this->EjectaDensity;
+    // Ejecta stay inside the bed's container (GranularBed's field data).
+    vtkFieldData* bfd = bedIn->GetFieldData();
+    const std::string container = b::fieldString(bfd, "ContainerType");
+    if (container == "Bowl")
+    {
+      const double R = b::fieldScalar(bfd, "ContainerRadius", 0.0);
+      if (R > 0.0)
+        p.allowed = [R](const double* x, double rad) { // the bowl and the cylinder above its rim
+          const double horizontal = std::sqrt(x[0] * x[0] + x[1] * x[1]);
+          return horizontal + rad <= R &&
+            (x[2] > 0.0 || std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) + rad <= R);
+        };
+    }
+    else if (container == "Box")
+    {
+      vtkDataArray* box = bfd->GetArray("BoxSize");
+      if (box && box->GetNumberOfComponents() == 3)
+      {
+        double L[3];
+        box->GetTuple(0, L);
+        p.allowed = [L](const double* x, double rad) {
+          return std::abs(x[0]) + rad <= 0.5 * L[0] && std::abs(x[1]) + rad <= 0.5 * L[1] &&
+            x[2] - rad >= -L[2];
+        };
+      }
+    }
     r = handoff(s, bed, region, p);
   });
   if (!ok)
@@ -154,6 +181,8 @@ int vtkCraterKitImpactHandoff::RequestData(
   b::addField(fd, "BedRemoved", static_cast<double>(r.bedRemoved));
   b::addField(fd, "BedMapped", static_cast<double>(r.bedMapped));
   b::addField(fd, "EjectaCount", static_cast<double>(r.ejectaCount));
+  b::addField(fd, "EjectaShrunk", static_cast<double>(r.ejectaShrunk));
+  b::addField(fd, "BedEvicted", static_cast<double>(r.bedEvicted));
   const double times[6] = { r.seconds.split, r.seconds.alphaShape, r.seconds.carve, r.seconds.map,
     r.seconds.correct, r.seconds.ejecta };
   b::addField(fd, "StepSeconds", times, 6); // split, alpha shape, carve, map, correct, ejecta

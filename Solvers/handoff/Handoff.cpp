@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <unordered_map>
 
@@ -135,9 +136,12 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
     const double v2 = sph.v[3 * i] * sph.v[3 * i] + sph.v[3 * i + 1] * sph.v[3 * i + 1] + sph.v[3 * i + 2] * sph.v[3 * i + 2];
     (v2 > params.ejectaSpeedLimit * params.ejectaSpeedLimit ? ejecta : compact).push_back(i);
   }
-  if (compact.size() < 4)
-    throw InputError("ImpactHandoff: fewer than 4 SPH particles are slower than EjectaSpeedLimit (" +
-                     std::to_string(params.ejectaSpeedLimit) + " m/s): no compact material to build a shape from");
+  if (compact.size() < 4) {
+    char limit[32];
+    std::snprintf(limit, sizeof limit, "%.3g", params.ejectaSpeedLimit);
+    throw InputError("ImpactHandoff: fewer than 4 SPH particles are slower than EjectaSpeedLimit (" + std::string(limit) +
+                     " m/s): no compact material to build a shape from");
+  }
   out.compactCount = compact.size();
   out.ejectaCount = ejecta.size();
   out.sphCompact = sphTotals(sph, compact);
@@ -182,8 +186,10 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
       out.shapeVolume += std::abs(CGAL::volume(a, c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point()));
     }
   if (interior == 0)
-    throw InputError("ImpactHandoff: the alpha shape is empty: Alpha (" + std::to_string(alphaRadius) +
-                     " m) is smaller than the SPH particle spacing");
+    throw InputError("ImpactHandoff: the alpha shape is empty: no tetrahedron of the " +
+                     std::to_string(compact.size()) + " compact SPH particles fits in a sphere of radius Alpha (" +
+                     std::to_string(alphaRadius) + " m): Alpha is below the particle spacing, or the compact "
+                     "particles are too few and scattered (raise EjectaSpeedLimit or hand off earlier)");
   // Boundary triangles, oriented outwards (away from the interior cell).
   {
     std::vector<AlphaShape::Facet> facets;
@@ -361,48 +367,6 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   }
   out.seconds.map = seconds(t0);
 
-  // Conservation: the mapped set carries the compact SPH material's momentum and angular
-  // momentum exactly.
-  t0 = std::chrono::steady_clock::now();
-  out.demBefore = totalsOf(p, &mapped);
-  if (!mapped.empty()) {
-    const HandoffTotals before = out.demBefore;
-    Eigen::Vector3d dV;
-    for (int a = 0; a < 3; ++a)
-      dV(a) = (out.sphCompact.momentum[a] - before.momentum[a]) / before.mass;
-    for (std::size_t j : mapped)
-      for (int a = 0; a < 3; ++a)
-        p.velocity[3 * j + a] += dV(a);
-    const HandoffTotals shifted = totalsOf(p, &mapped);
-    Eigen::Vector3d cm = Eigen::Vector3d::Zero();
-    for (std::size_t j : mapped)
-      cm += p.mass[j] * vec(p.position, j);
-    cm /= shifted.mass;
-    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
-    for (std::size_t j : mapped) {
-      const Eigen::Vector3d r = vec(p.position, j) - cm;
-      I += p.mass[j] * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
-    }
-    Eigen::Vector3d dL;
-    for (int a = 0; a < 3; ++a)
-      dL(a) = out.sphCompact.angularMomentum[a] - shifted.angularMomentum[a];
-    Eigen::FullPivLU<Eigen::Matrix3d> lu(I);
-    if (lu.isInvertible()) {
-      const Eigen::Vector3d dW = lu.solve(dL);
-      for (std::size_t j : mapped) {
-        const Eigen::Vector3d add = dW.cross(vec(p.position, j) - cm);
-        for (int a = 0; a < 3; ++a)
-          p.velocity[3 * j + a] += add(a);
-      }
-    } else {
-      out.warnings.push_back("the mapped bed particles are collinear: angular momentum could not be corrected");
-    }
-  } else {
-    out.warnings.push_back("no bed particle lies inside the alpha shape: the compact SPH material's momentum is lost");
-  }
-  out.demMapped = totalsOf(p, &mapped);
-  out.seconds.correct = seconds(t0);
-
   // 5. Ejecta as particles of equal mass and velocity, moved forward along their velocity
   // until they overlap nothing by more than 1 % of their radius.
   t0 = std::chrono::steady_clock::now();
@@ -460,25 +424,99 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
     return worst;
   };
   std::size_t unresolved = 0;
+  const std::size_t nBed = p.size();
+  std::vector<char> gone(nBed, 0);
   for (std::size_t k = 0; k < ejecta.size(); ++k) {
     const std::size_t i = ejecta[k];
     double x[3] = {sph.x[3 * i], sph.x[3 * i + 1], sph.x[3 * i + 2]};
     const double* v = &sph.v[3 * i];
     const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    int tries = 0;
-    while (worstOverlap(x, er[k]) > 0.01 && tries < 400) {
-      for (int a = 0; a < 3; ++a)
-        x[a] += 0.25 * er[k] * v[a] / speed; // along v: r × v, hence L, unchanged
-      ++tries;
+    auto fits = [&](const double* y) {
+      return worstOverlap(y, er[k]) <= 0.01 && (!params.allowed || params.allowed(y, er[k]));
+    };
+    // Along v (r × v, hence L, unchanged): forward first, then backward, in quarter radii.
+    bool placed = fits(x);
+    for (int dir = 1; dir >= -1 && !placed; dir -= 2)
+      for (int step = 1; step <= 400 && !placed; ++step) {
+        double y[3];
+        for (int a = 0; a < 3; ++a)
+          y[a] = x[a] + dir * step * 0.25 * er[k] * v[a] / speed;
+        if (fits(y)) {
+          std::copy(y, y + 3, x);
+          placed = true;
+        }
+      }
+    double radius = er[k];
+    if (!placed) {
+      // No free place along its path: keep it where it is, smaller (same mass and momentum,
+      // denser) so that it fits among its neighbours, if that leaves it at least a fifth.
+      double fit = radius;
+      long long c[3];
+      cellOf(x, c);
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            auto range = grid.equal_range(keyOf(c[0] + dx, c[1] + dy, c[2] + dz));
+            for (auto it = range.first; it != range.second; ++it) {
+              const std::size_t j = it->second;
+              const double d = std::sqrt((x[0] - p.position[3 * j]) * (x[0] - p.position[3 * j]) +
+                                         (x[1] - p.position[3 * j + 1]) * (x[1] - p.position[3 * j + 1]) +
+                                         (x[2] - p.position[3 * j + 2]) * (x[2] - p.position[3 * j + 2]));
+              fit = std::min(fit, d - p.radius[j]);
+            }
+          }
+      if (fit >= 0.2 * radius && (!params.allowed || params.allowed(x, fit))) {
+        radius = fit;
+        ++out.ejectaShrunk;
+      } else {
+        // Fast SPH material sits where a bed particle is: the ejecta particle takes its place
+        // (the bed particle leaves the mapped set before the momentum correction below).
+        for (int dx = -1; dx <= 1; ++dx)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dz = -1; dz <= 1; ++dz) {
+              auto range = grid.equal_range(keyOf(c[0] + dx, c[1] + dy, c[2] + dz));
+              for (auto it = range.first; it != range.second;) {
+                const std::size_t j = it->second;
+                const double d = std::sqrt((x[0] - p.position[3 * j]) * (x[0] - p.position[3 * j]) +
+                                           (x[1] - p.position[3 * j + 1]) * (x[1] - p.position[3 * j + 1]) +
+                                           (x[2] - p.position[3 * j + 2]) * (x[2] - p.position[3 * j + 2]));
+                if (j < nBed && (radius + p.radius[j] - d) / std::min(radius, p.radius[j]) > 0.01) {
+                  gone[j] = 1;
+                  ++out.bedEvicted;
+                  it = grid.erase(it);
+                } else {
+                  ++it;
+                }
+              }
+            }
+        // Then, among the ejecta placed before it, as large as fits.
+        double room = radius;
+        for (int dx = -1; dx <= 1; ++dx)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dz = -1; dz <= 1; ++dz) {
+              auto range = grid.equal_range(keyOf(c[0] + dx, c[1] + dy, c[2] + dz));
+              for (auto it = range.first; it != range.second; ++it) {
+                const std::size_t j = it->second;
+                const double d = std::sqrt((x[0] - p.position[3 * j]) * (x[0] - p.position[3 * j]) +
+                                           (x[1] - p.position[3 * j + 1]) * (x[1] - p.position[3 * j + 1]) +
+                                           (x[2] - p.position[3 * j + 2]) * (x[2] - p.position[3 * j + 2]));
+                room = std::min(room, d - p.radius[j]);
+              }
+            }
+        if (room < radius && room > 0.0) {
+          radius = room;
+          ++out.ejectaShrunk;
+        }
+        if (worstOverlap(x, radius) > 0.01)
+          ++unresolved;
+      }
     }
-    if (tries == 400)
-      ++unresolved;
     p.position.insert(p.position.end(), x, x + 3);
     p.velocity.insert(p.velocity.end(), v, v + 3);
     p.angularVelocity.insert(p.angularVelocity.end(), {0.0, 0.0, 0.0});
-    p.radius.push_back(er[k]);
+    p.radius.push_back(radius);
     p.mass.push_back(sph.mass[i]);
-    p.density.push_back(rhoGrain);
+    p.density.push_back(sph.mass[i] / (4.0 / 3.0 * M_PI * radius * radius * radius));
     p.material.push_back(ejectaMat);
     p.id.push_back(nextId++);
     out.origin.push_back(1);
@@ -486,11 +524,79 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   }
   if (unresolved > 0)
     out.warnings.push_back(std::to_string(unresolved) + " ejecta particles still overlap a neighbour by more than 1 % of a radius");
+  if (out.bedEvicted > 0) {
+    std::vector<std::size_t> newIndex(p.size());
+    std::size_t w = 0;
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      newIndex[j] = w;
+      if (j < nBed && gone[j])
+        continue;
+      p.forEachArray([&](auto& array, int comps) {
+        for (int a = 0; a < comps; ++a)
+          array[comps * w + a] = array[comps * j + a];
+      });
+      out.origin[w] = out.origin[j];
+      ++w;
+    }
+    p.forEachArray([&](auto& array, int comps) { array.resize(comps * w); });
+    out.origin.resize(w);
+    std::vector<std::size_t> still;
+    for (std::size_t j : mapped)
+      if (!gone[j])
+        still.push_back(newIndex[j]);
+    mapped.swap(still);
+    out.bedMapped = mapped.size();
+  }
   std::vector<std::size_t> ej;
-  for (std::size_t j = keep.size(); j < p.size(); ++j)
-    ej.push_back(j);
+  for (std::size_t j = 0; j < p.size(); ++j)
+    if (out.origin[j] == 1)
+      ej.push_back(j);
   out.demEjecta = totalsOf(p, &ej);
   out.seconds.ejecta = seconds(t0);
+
+  // Conservation: the mapped set carries the compact SPH material's momentum and angular
+  // momentum exactly.
+  t0 = std::chrono::steady_clock::now();
+  out.demBefore = totalsOf(p, &mapped);
+  if (!mapped.empty()) {
+    const HandoffTotals before = out.demBefore;
+    Eigen::Vector3d dV;
+    for (int a = 0; a < 3; ++a)
+      dV(a) = (out.sphCompact.momentum[a] - before.momentum[a]) / before.mass;
+    for (std::size_t j : mapped)
+      for (int a = 0; a < 3; ++a)
+        p.velocity[3 * j + a] += dV(a);
+    const HandoffTotals shifted = totalsOf(p, &mapped);
+    Eigen::Vector3d cm = Eigen::Vector3d::Zero();
+    for (std::size_t j : mapped)
+      cm += p.mass[j] * vec(p.position, j);
+    cm /= shifted.mass;
+    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+    for (std::size_t j : mapped) {
+      const Eigen::Vector3d r = vec(p.position, j) - cm;
+      I += p.mass[j] * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    }
+    Eigen::Vector3d dL;
+    for (int a = 0; a < 3; ++a)
+      dL(a) = out.sphCompact.angularMomentum[a] - shifted.angularMomentum[a];
+    Eigen::FullPivLU<Eigen::Matrix3d> lu(I);
+    if (lu.isInvertible()) {
+      const Eigen::Vector3d dW = lu.solve(dL);
+      for (std::size_t j : mapped) {
+        const Eigen::Vector3d add = dW.cross(vec(p.position, j) - cm);
+        for (int a = 0; a < 3; ++a)
+          p.velocity[3 * j + a] += add(a);
+      }
+    } else {
+      out.warnings.push_back("the mapped bed particles are collinear: angular momentum could not be corrected");
+    }
+  } else {
+    out.warnings.push_back("no bed particle lies inside the alpha shape: the compact SPH material's momentum is lost");
+  }
+  out.demMapped = totalsOf(p, &mapped);
+  out.seconds.correct = seconds(t0);
+
+
   return out;
 }
 

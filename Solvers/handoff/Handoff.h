@@ -15,14 +15,19 @@
 //    angular momentum (about the origin): a uniform velocity shift, then a rigid rotation
 //    about their centre of mass (which leaves the linear momentum unchanged).
 // 5. Ejecta become DEM particles of equal mass and velocity (grain density of the bed), at
-//    their SPH positions, moved forward along their own velocity (which changes neither
-//    momentum nor angular momentum) until they overlap nothing by more than 1 % of a radius.
+//    their SPH positions, moved along their own velocity (which changes neither momentum nor
+//    angular momentum) to the nearest place, forward first, where they overlap nothing by more
+//    than 1 % of a radius and stay inside the container's walls; one with no such place keeps
+//    its position with a smaller radius (same mass and momentum) that fits, if one does, and
+//    otherwise takes the place of the bed particles it overlaps. The momentum correction of
+//    step 4 is made after this, on the bed particles that remain.
 #pragma once
 
 #include "common/ParticleSet.h"
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -49,6 +54,10 @@ struct HandoffParams {
   int minNeighbours = 1;         // below this many SPH particles in the support: the nearest one's velocity
   double ejectaDensity = 0.0;    // kg/m³ of ejecta grains; 0: the bed's mean grain density
   int ejectaMaterial = -1;       // -1: the bed's first particle's material
+  // Where a sphere of radius r centred at x may be put (inside the container's walls); empty:
+  // anywhere. Ejecta are moved along their velocity, forward first, then backward, to the
+  // nearest place that is allowed and free.
+  std::function<bool(const double* x, double r)> allowed;
   void validate() const;
 };
 
@@ -64,6 +73,8 @@ struct HandoffResult {
   std::vector<long long> triangles;   // 3 vertex indices per triangle, outward normals
   double alphaRadius = 0.0;
   std::size_t compactCount = 0, ejectaCount = 0, bedRemoved = 0, bedMapped = 0;
+  std::size_t ejectaShrunk = 0;       // ejecta with no free place on their path, made smaller to fit
+  std::size_t bedEvicted = 0;         // bed particles whose place an ejecta particle took
   HandoffTotals sphCompact, sphEjecta, demMapped, demEjecta, demBefore; // demBefore: mapped set before correction
   double shapeVolume = 0.0;           // volume of the alpha shape's interior cells, m³
   std::vector<std::string> warnings;

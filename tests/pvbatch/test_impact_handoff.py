@@ -1,0 +1,72 @@
+"""End to end through ParaView: SPHImpact (small) -> ImpactHandoff with a small GranularBed ->
+DEMIntegrator steps. The hand-off's output carries the SPH totals of linear and angular
+momentum, the alpha shape comes out as a surface, the DEM runs from it, and bad input is
+named."""
+
+import sys
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+from craterkit import fetch, field_value, load_plugin
+from craterkit.testing import Checker, captured_vtk_messages
+
+simple = load_plugin()
+t = Checker("test_impact_handoff")
+
+sph = simple.SPHImpact(ParticlesAcrossImpactor=3, TargetRadius=0.25, EndTime=4e-5, OutputInterval=2e-5)
+bed = simple.GranularBed(Packing="HCP", Container="Bowl", ContainerRadius=0.3, ParticleRadius=0.015,
+                         SurfaceHeight=0.0)
+hand = simple.ImpactHandoff(Input=sph, Bed=bed, EjectaSpeedLimit=100.0)
+out = fetch(hand)
+n = out.GetNumberOfPoints()
+origin = vtk_to_numpy(out.GetPointData().GetArray("Origin"))
+t.check(n > 100 and (origin == 0).sum() > 100 and (origin == 1).sum() > 0,
+        f"expected kept bed and ejecta particles, got {n} ({(origin == 1).sum()} ejecta)")
+
+sph.UpdatePipeline(4e-5)
+s = fetch(sph)
+sv = vtk_to_numpy(s.GetPointData().GetArray("Velocity"))
+sm = vtk_to_numpy(s.GetPointData().GetArray("Mass"))
+sx = vtk_to_numpy(s.GetPoints().GetData())
+P_sph = (sm[:, None] * sv).sum(axis=0)
+L_sph = (sm[:, None] * np.cross(sx, sv)).sum(axis=0)
+
+pd = out.GetPointData()
+v = vtk_to_numpy(pd.GetArray("Velocity"))
+w = vtk_to_numpy(pd.GetArray("AngularVelocity"))
+m = vtk_to_numpy(pd.GetArray("Mass"))
+r = vtk_to_numpy(pd.GetArray("Radius"))
+x = vtk_to_numpy(out.GetPoints().GetData())
+P = (m[:, None] * v).sum(axis=0)
+L = (m[:, None] * np.cross(x, v)).sum(axis=0) + ((0.4 * m * r * r)[:, None] * w).sum(axis=0)
+scale = (sm * np.linalg.norm(sv, axis=1)).sum()
+t.check(np.linalg.norm(P - P_sph) < 1e-10 * scale, f"momentum not carried over: {P} vs {P_sph}")
+t.check(np.linalg.norm(L - L_sph) < 1e-10 * scale * 0.25, f"angular momentum not carried over: {L} vs {L_sph}")
+fd = out.GetFieldData()
+t.check(abs(field_value(out, "Time") - 4e-5) < 1e-15, "the hand-off time is not the SPH input's last step")
+ratio = field_value(out, "CompactMassRatio")
+t.check(ratio is not None and ratio > 0.0, "no compact mass ratio in field data")
+t.check(fd.GetAbstractArray("ContainerType") is not None, "the bed's container did not pass through")
+
+surface = fetch(hand, port=1)
+t.check(surface.GetNumberOfCells() > 100, f"alpha-shape surface has {surface.GetNumberOfCells()} triangles")
+
+# Two DEM steps (about 5 ns each): momentum changes only by gravity and the few wall contacts.
+dem = simple.DEMIntegrator(Input=hand, MaxExpectedSpeed=2000.0, EndTime=4e-5 + 1e-8, OutputInterval=1e-8)
+dem.UpdatePipeline(4e-5 + 1e-8)
+d = fetch(dem)
+steps = field_value(d, "Step")
+Pd = np.array(d.GetFieldData().GetArray("TotalMomentum").GetTuple3(0))
+t.check(d.GetNumberOfPoints() == n and steps is not None and steps >= 1, f"the DEM did not step ({steps})")
+t.check(np.linalg.norm(Pd - P) < 1e-3 * scale, f"DEM momentum drifted: {Pd} vs {P}")
+
+with captured_vtk_messages() as log:
+    bad = fetch(simple.ImpactHandoff(Input=sph, Bed=bed, EjectaSpeedLimit=1e-9))
+t.check(bad.GetNumberOfPoints() == 0 and "no compact material" in log["text"],
+        f"empty compact set not reported: {log['text'][:300]!r}")
+with captured_vtk_messages() as log:
+    bad = fetch(simple.ImpactHandoff(Input=simple.Sphere(), Bed=bed))
+t.check(bad.GetNumberOfPoints() == 0 and "Velocity" in log["text"],
+        f"missing Velocity not reported: {log['text'][:300]!r}")
+sys.exit(t.close())
