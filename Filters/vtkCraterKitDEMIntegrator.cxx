@@ -20,22 +20,6 @@ vtkStandardNewMacro(vtkCraterKitDEMIntegrator);
 vtkCraterKitDEMIntegrator::vtkCraterKitDEMIntegrator() = default;
 vtkCraterKitDEMIntegrator::~vtkCraterKitDEMIntegrator() = default;
 
-namespace
-{
-std::vector<double> OutputTimes(double start, double end, double interval)
-{
-  std::vector<double> times{ start };
-  if (!(interval > 0.0) || !(end > start))
-    return times;
-  const long count = static_cast<long>(std::floor((end - start) / interval + 1e-9));
-  for (long k = 1; k <= count && k < 1000000; ++k)
-    times.push_back(start + k * interval);
-  if (end - times.back() > 1e-9 * interval)
-    times.push_back(end);
-  return times;
-}
-}
-
 int vtkCraterKitDEMIntegrator::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -45,7 +29,8 @@ int vtkCraterKitDEMIntegrator::RequestInformation(
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   if (inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
     start = inInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS())[0];
-  const std::vector<double> times = OutputTimes(start, this->EndTime, this->OutputInterval);
+  const std::vector<double> times =
+    craterkit::bridge::outputTimes(start, this->EndTime, this->OutputInterval);
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
     static_cast<int>(times.size()));
   const double range[2] = { times.front(), times.back() };

@@ -149,11 +149,7 @@ int vtkCraterKitImpactHandoff::RequestData(
     vtkWarningMacro(<< w);
 
   b::toPolyData(r.particles, out);
-  auto origin = vtkSmartPointer<vtkIntArray>::New();
-  origin->SetName("Origin");
-  origin->SetNumberOfTuples(static_cast<vtkIdType>(r.origin.size()));
-  std::copy(r.origin.begin(), r.origin.end(), origin->GetPointer(0));
-  out->GetPointData()->AddArray(origin);
+  out->GetPointData()->AddArray(b::intArray("Origin", r.origin));
   vtkFieldData* fd = out->GetFieldData();
   fd->ShallowCopy(bedIn->GetFieldData()); // the container, for DEMIntegrator
   vtkFieldData* sfd = sphIn->GetFieldData();

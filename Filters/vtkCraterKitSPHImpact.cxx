@@ -26,19 +26,6 @@ vtkCraterKitSPHImpact::~vtkCraterKitSPHImpact() = default;
 
 namespace
 {
-std::vector<double> OutputTimes(double end, double interval)
-{
-  std::vector<double> times{ 0.0 };
-  if (!(interval > 0.0) || !(end > 0.0) || !std::isfinite(end))
-    return times;
-  const long count = static_cast<long>(std::floor(end / interval + 1e-9));
-  for (long k = 1; k <= count && k < 100000; ++k)
-    times.push_back(k * interval);
-  if (end - times.back() > 1e-9 * interval)
-    times.push_back(end);
-  return times;
-}
-
 std::string DefaultMaterialDirectory()
 {
   if (const char* env = std::getenv("CRATERKIT_MATERIALS"))
@@ -51,7 +38,8 @@ int vtkCraterKitSPHImpact::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const std::vector<double> times = OutputTimes(this->EndTime, this->OutputInterval);
+  const std::vector<double> times =
+    craterkit::bridge::outputTimes(0.0, this->EndTime, this->OutputInterval, 100000);
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
     static_cast<int>(times.size()));
   const double range[2] = { times.front(), times.back() };
@@ -132,24 +120,7 @@ int vtkCraterKitSPHImpact::RequestData(
   const SphSolver& solver = this->Run->solver();
   const SphState& s = solver.state();
   const vtkIdType n = static_cast<vtkIdType>(s.size());
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(n);
-  std::copy(s.x.begin(), s.x.end(), static_cast<double*>(points->GetData()->GetVoidPointer(0)));
-  output->SetPoints(points);
-  auto offsets = vtkSmartPointer<vtkTypeInt64Array>::New();
-  auto connectivity = vtkSmartPointer<vtkTypeInt64Array>::New();
-  offsets->SetNumberOfTuples(n + 1);
-  connectivity->SetNumberOfTuples(n);
-  for (vtkIdType i = 0; i <= n; ++i)
-  {
-    offsets->SetValue(i, i);
-    if (i < n)
-      connectivity->SetValue(i, i);
-  }
-  auto verts = vtkSmartPointer<vtkCellArray>::New();
-  verts->SetData(offsets, connectivity);
-  output->SetVerts(verts);
+  b::setVertices(output, s.x);
 
   vtkPointData* pd = output->GetPointData();
   pd->AddArray(b::doubleArray("Velocity", 3, s.v));
@@ -170,17 +141,11 @@ int vtkCraterKitSPHImpact::RequestData(
     o[0] = S[0], o[1] = S[1], o[2] = S[2], o[3] = S[3], o[4] = S[5], o[5] = S[4];
   }
   pd->AddArray(b::doubleArray("DeviatoricStress", 6, stress));
-  auto material = vtkSmartPointer<vtkIntArray>::New();
-  material->SetName("Material");
-  material->SetNumberOfTuples(n);
-  std::copy(s.material.begin(), s.material.end(), material->GetPointer(0));
-  pd->AddArray(material);
-  auto ids = vtkSmartPointer<vtkTypeInt64Array>::New();
-  ids->SetName("Id");
-  ids->SetNumberOfTuples(n);
-  for (vtkIdType i = 0; i < n; ++i)
-    ids->SetValue(i, i);
-  pd->AddArray(ids);
+  pd->AddArray(b::intArray("Material", s.material));
+  std::vector<std::int64_t> ids(s.size());
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    ids[i] = static_cast<std::int64_t>(i);
+  pd->AddArray(b::idArray("Id", ids));
   pd->SetActiveScalars("Pressure");
 
   vtkFieldData* fd = output->GetFieldData();

@@ -19,6 +19,8 @@
 #include <vtkStringArray.h>
 #include <vtkTypeInt64Array.h>
 
+#include <cmath>
+#include <cstdint>
 #include <exception>
 #include <string>
 
@@ -35,16 +37,30 @@ inline vtkSmartPointer<vtkDoubleArray> doubleArray(const char* name, int compone
   return array;
 }
 
-// Particles as vertices with the point arrays of ARCHITECTURE.md.
-inline void toPolyData(const ParticleSet& s, vtkPolyData* out) {
-  const vtkIdType n = static_cast<vtkIdType>(s.size());
+inline vtkSmartPointer<vtkIntArray> intArray(const char* name, const std::vector<int>& values) {
+  auto array = vtkSmartPointer<vtkIntArray>::New();
+  array->SetName(name);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  std::copy(values.begin(), values.end(), array->GetPointer(0));
+  return array;
+}
+
+inline vtkSmartPointer<vtkTypeInt64Array> idArray(const char* name, const std::vector<std::int64_t>& values) {
+  auto array = vtkSmartPointer<vtkTypeInt64Array>::New();
+  array->SetName(name);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  std::copy(values.begin(), values.end(), array->GetPointer(0));
+  return array;
+}
+
+// Points (3 doubles each) with one vertex cell per point.
+inline void setVertices(vtkPolyData* out, const std::vector<double>& xyz) {
+  const vtkIdType n = static_cast<vtkIdType>(xyz.size() / 3);
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(n);
-  std::copy(s.position.begin(), s.position.end(),
-            static_cast<double*>(points->GetData()->GetVoidPointer(0)));
+  std::copy(xyz.begin(), xyz.end(), static_cast<double*>(points->GetData()->GetVoidPointer(0)));
   out->SetPoints(points);
-
   auto offsets = vtkSmartPointer<vtkTypeInt64Array>::New();
   auto connectivity = vtkSmartPointer<vtkTypeInt64Array>::New();
   offsets->SetNumberOfTuples(n + 1);
@@ -57,24 +73,32 @@ inline void toPolyData(const ParticleSet& s, vtkPolyData* out) {
   auto verts = vtkSmartPointer<vtkCellArray>::New();
   verts->SetData(offsets, connectivity);
   out->SetVerts(verts);
+}
 
+// Output times start, start + interval, ..., end (end included), at most `limit` of them.
+inline std::vector<double> outputTimes(double start, double end, double interval, long limit = 1000000) {
+  std::vector<double> times{start};
+  if (!(interval > 0.0) || !(end > start) || !std::isfinite(end))
+    return times;
+  const long count = static_cast<long>(std::floor((end - start) / interval + 1e-9));
+  for (long k = 1; k <= count && k < limit; ++k)
+    times.push_back(start + k * interval);
+  if (end - times.back() > 1e-9 * interval)
+    times.push_back(end);
+  return times;
+}
+
+// Particles as vertices with the point arrays of ARCHITECTURE.md.
+inline void toPolyData(const ParticleSet& s, vtkPolyData* out) {
+  setVertices(out, s.position);
   vtkPointData* pd = out->GetPointData();
   pd->AddArray(doubleArray("Velocity", 3, s.velocity));
   pd->AddArray(doubleArray("AngularVelocity", 3, s.angularVelocity));
   pd->AddArray(doubleArray("Radius", 1, s.radius));
   pd->AddArray(doubleArray("Mass", 1, s.mass));
   pd->AddArray(doubleArray("Density", 1, s.density));
-  auto material = vtkSmartPointer<vtkIntArray>::New();
-  material->SetName("Material");
-  material->SetNumberOfTuples(n);
-  std::copy(s.material.begin(), s.material.end(), material->GetPointer(0));
-  pd->AddArray(material);
-  auto ids = vtkSmartPointer<vtkTypeInt64Array>::New();
-  ids->SetName("Id");
-  ids->SetNumberOfTuples(n);
-  for (vtkIdType i = 0; i < n; ++i)
-    ids->SetValue(i, s.id[i]);
-  pd->AddArray(ids);
+  pd->AddArray(intArray("Material", s.material));
+  pd->AddArray(idArray("Id", s.id));
   pd->SetActiveScalars("Radius");
 }
 

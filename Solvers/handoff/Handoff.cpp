@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <iterator>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -405,22 +406,30 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   grid.reserve(p.size() + ejecta.size());
   for (std::size_t i = 0; i < p.size(); ++i)
     grid.emplace(key(&p.position[3 * i]), i);
-  auto worstOverlap = [&](const double* x, double r) {
-    double worst = 0.0;
+  // Calls f(iterator, j, distance) for every particle j in the 27 cells around x; f returns
+  // the iterator to continue from (so that it may erase the entry).
+  auto forNearby = [&](const double* x, auto&& f) {
     long long c[3];
     cellOf(x, c);
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dz = -1; dz <= 1; ++dz) {
           auto range = grid.equal_range(keyOf(c[0] + dx, c[1] + dy, c[2] + dz));
-          for (auto it = range.first; it != range.second; ++it) {
+          for (auto it = range.first; it != range.second;) {
             const std::size_t j = it->second;
             const double d = std::sqrt((x[0] - p.position[3 * j]) * (x[0] - p.position[3 * j]) +
                                        (x[1] - p.position[3 * j + 1]) * (x[1] - p.position[3 * j + 1]) +
                                        (x[2] - p.position[3 * j + 2]) * (x[2] - p.position[3 * j + 2]));
-            worst = std::max(worst, (r + p.radius[j] - d) / std::min(r, p.radius[j]));
+            it = f(it, j, d);
           }
         }
+  };
+  auto worstOverlap = [&](const double* x, double r) {
+    double worst = 0.0;
+    forNearby(x, [&](auto it, std::size_t j, double d) {
+      worst = std::max(worst, (r + p.radius[j] - d) / std::min(r, p.radius[j]));
+      return std::next(it);
+    });
     return worst;
   };
   std::size_t unresolved = 0;
@@ -451,58 +460,30 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
       // No free place along its path: keep it where it is, smaller (same mass and momentum,
       // denser) so that it fits among its neighbours, if that leaves it at least a fifth.
       double fit = radius;
-      long long c[3];
-      cellOf(x, c);
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dz = -1; dz <= 1; ++dz) {
-            auto range = grid.equal_range(keyOf(c[0] + dx, c[1] + dy, c[2] + dz));
-            for (auto it = range.first; it != range.second; ++it) {
-              const std::size_t j = it->second;
-              const double d = std::sqrt((x[0] - p.position[3 * j]) * (x[0] - p.position[3 * j]) +
-                                         (x[1] - p.position[3 * j + 1]) * (x[1] - p.position[3 * j + 1]) +
-                                         (x[2] - p.position[3 * j + 2]) * (x[2] - p.position[3 * j + 2]));
-              fit = std::min(fit, d - p.radius[j]);
-            }
-          }
+      forNearby(x, [&](auto it, std::size_t j, double d) {
+        fit = std::min(fit, d - p.radius[j]);
+        return std::next(it);
+      });
       if (fit >= 0.2 * radius && (!params.allowed || params.allowed(x, fit))) {
         radius = fit;
         ++out.ejectaShrunk;
       } else {
         // Fast SPH material sits where a bed particle is: the ejecta particle takes its place
         // (the bed particle leaves the mapped set before the momentum correction below).
-        for (int dx = -1; dx <= 1; ++dx)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dz = -1; dz <= 1; ++dz) {
-              auto range = grid.equal_range(keyOf(c[0] + dx, c[1] + dy, c[2] + dz));
-              for (auto it = range.first; it != range.second;) {
-                const std::size_t j = it->second;
-                const double d = std::sqrt((x[0] - p.position[3 * j]) * (x[0] - p.position[3 * j]) +
-                                           (x[1] - p.position[3 * j + 1]) * (x[1] - p.position[3 * j + 1]) +
-                                           (x[2] - p.position[3 * j + 2]) * (x[2] - p.position[3 * j + 2]));
-                if (j < nBed && (radius + p.radius[j] - d) / std::min(radius, p.radius[j]) > 0.01) {
-                  gone[j] = 1;
-                  ++out.bedEvicted;
-                  it = grid.erase(it);
-                } else {
-                  ++it;
-                }
-              }
-            }
+        forNearby(x, [&](auto it, std::size_t j, double d) {
+          if (j < nBed && (radius + p.radius[j] - d) / std::min(radius, p.radius[j]) > 0.01) {
+            gone[j] = 1;
+            ++out.bedEvicted;
+            return grid.erase(it);
+          }
+          return std::next(it);
+        });
         // Then, among the ejecta placed before it, as large as fits.
         double room = radius;
-        for (int dx = -1; dx <= 1; ++dx)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dz = -1; dz <= 1; ++dz) {
-              auto range = grid.equal_range(keyOf(c[0] + dx, c[1] + dy, c[2] + dz));
-              for (auto it = range.first; it != range.second; ++it) {
-                const std::size_t j = it->second;
-                const double d = std::sqrt((x[0] - p.position[3 * j]) * (x[0] - p.position[3 * j]) +
-                                           (x[1] - p.position[3 * j + 1]) * (x[1] - p.position[3 * j + 1]) +
-                                           (x[2] - p.position[3 * j + 2]) * (x[2] - p.position[3 * j + 2]));
-                room = std::min(room, d - p.radius[j]);
-              }
-            }
+        forNearby(x, [&](auto it, std::size_t j, double d) {
+          room = std::min(room, d - p.radius[j]);
+          return std::next(it);
+        });
         if (room < radius && room > 0.0) {
           radius = room;
           ++out.ejectaShrunk;
