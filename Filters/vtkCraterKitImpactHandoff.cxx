@@ -115,6 +115,7 @@ int vtkCraterKitImpactHandoff::RequestData(
     p.alphaRadius = this->Alpha;
     p.minNeighbours = this->MinNeighbours;
     p.ejectaDensity = this->EjectaDensity;
+    p.groupEjecta = this->EjectaParticles == GROUPED_TO_BED_SIZE;
     // Ejecta stay inside the bed's container (GranularBed's field data).
     vtkFieldData* bfd = bedIn->GetFieldData();
     const std::string container = b::fieldString(bfd, "ContainerType");
@@ -210,4 +211,5 @@ void vtkCraterKitImpactHandoff::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinNeighbours: " << this->MinNeighbours << "\n";
   os << indent << "HandoffTime: " << this->HandoffTime << "\n";
   os << indent << "EjectaDensity: " << this->EjectaDensity << "\n";
+  os << indent << "EjectaParticles: " << this->EjectaParticles << "\n";
 }

@@ -37,6 +37,9 @@ public:
   vtkGetMacro(HandoffTime, double);
   vtkSetMacro(EjectaDensity, double);
   vtkGetMacro(EjectaDensity, double);
+  enum EjectaModes { ONE_PER_SPH_PARTICLE = 0, GROUPED_TO_BED_SIZE = 1 };
+  vtkSetClampMacro(EjectaParticles, int, ONE_PER_SPH_PARTICLE, GROUPED_TO_BED_SIZE);
+  vtkGetMacro(EjectaParticles, int);
 
 protected:
   vtkCraterKitImpactHandoff();
@@ -55,6 +58,7 @@ private:
   int MinNeighbours = 1;
   double HandoffTime = -1.0;
   double EjectaDensity = 0.0;
+  int EjectaParticles = ONE_PER_SPH_PARTICLE;
 };
 
 #endif

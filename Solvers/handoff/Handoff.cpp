@@ -382,9 +382,56 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   std::int64_t nextId = 0;
   for (std::size_t i = 0; i < p.size(); ++i)
     nextId = std::max(nextId, p.id[i] + 1), rmax = std::max(rmax, p.radius[i]);
-  std::vector<double> er(ejecta.size());
-  for (std::size_t k = 0; k < ejecta.size(); ++k) {
-    er[k] = std::cbrt(3.0 * sph.mass[ejecta[k]] / (4.0 * M_PI * rhoGrain));
+  // The pieces that become particles: each ejecta SPH particle, or (grouped) the ejecta in
+  // each cube of the bed's mean particle diameter merged into one particle at their centre of
+  // mass with their momentum and, as spin, their angular momentum about that centre, so that
+  // mass, momentum and angular momentum are all kept.
+  struct Piece {
+    double m = 0.0, x[3] = {0, 0, 0}, v[3] = {0, 0, 0}, L[3] = {0, 0, 0};
+  };
+  std::vector<Piece> pieces;
+  if (params.groupEjecta && !ejecta.empty()) {
+    double rb = 0.0;
+    for (std::size_t i = 0; i < bed.size(); ++i)
+      rb += bed.radius[i];
+    const double edge = 2.0 * rb / static_cast<double>(bed.size());
+    std::map<std::array<long long, 3>, std::vector<std::size_t>> groups;
+    for (std::size_t i : ejecta) {
+      std::array<long long, 3> c;
+      for (int a = 0; a < 3; ++a)
+        c[a] = static_cast<long long>(std::floor(sph.x[3 * i + a] / edge));
+      groups[c].push_back(i);
+    }
+    for (const auto& [cellKey, members] : groups) {
+      Piece q;
+      for (std::size_t i : members) {
+        q.m += sph.mass[i];
+        for (int a = 0; a < 3; ++a)
+          q.x[a] += sph.mass[i] * sph.x[3 * i + a], q.v[a] += sph.mass[i] * sph.v[3 * i + a];
+      }
+      for (int a = 0; a < 3; ++a)
+        q.x[a] /= q.m, q.v[a] /= q.m;
+      for (std::size_t i : members) {
+        const Eigen::Vector3d r = vec(sph.x, i) - Eigen::Vector3d(q.x[0], q.x[1], q.x[2]);
+        const Eigen::Vector3d u = vec(sph.v, i) - Eigen::Vector3d(q.v[0], q.v[1], q.v[2]);
+        const Eigen::Vector3d l = sph.mass[i] * r.cross(u);
+        for (int a = 0; a < 3; ++a)
+          q.L[a] += l(a);
+      }
+      pieces.push_back(q);
+    }
+  } else {
+    for (std::size_t i : ejecta) {
+      Piece q;
+      q.m = sph.mass[i];
+      for (int a = 0; a < 3; ++a)
+        q.x[a] = sph.x[3 * i + a], q.v[a] = sph.v[3 * i + a];
+      pieces.push_back(q);
+    }
+  }
+  std::vector<double> er(pieces.size());
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    er[k] = std::cbrt(3.0 * pieces[k].m / (4.0 * M_PI * rhoGrain));
     rmax = std::max(rmax, er[k]);
   }
   const double cell = 2.0 * rmax;
@@ -403,7 +450,7 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
     return keyOf(c[0], c[1], c[2]);
   };
   std::unordered_multimap<long long, std::size_t> grid;
-  grid.reserve(p.size() + ejecta.size());
+  grid.reserve(p.size() + pieces.size());
   for (std::size_t i = 0; i < p.size(); ++i)
     grid.emplace(key(&p.position[3 * i]), i);
   // Calls f(iterator, j, distance) for every particle j in the 27 cells around x; f returns
@@ -435,10 +482,10 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   std::size_t unresolved = 0;
   const std::size_t nBed = p.size();
   std::vector<char> gone(nBed, 0);
-  for (std::size_t k = 0; k < ejecta.size(); ++k) {
-    const std::size_t i = ejecta[k];
-    double x[3] = {sph.x[3 * i], sph.x[3 * i + 1], sph.x[3 * i + 2]};
-    const double* v = &sph.v[3 * i];
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    const Piece& q = pieces[k];
+    double x[3] = {q.x[0], q.x[1], q.x[2]};
+    const double* v = q.v;
     const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     auto fits = [&](const double* y) {
       return worstOverlap(y, er[k]) <= 0.01 && (!params.allowed || params.allowed(y, er[k]));
@@ -494,10 +541,11 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
     }
     p.position.insert(p.position.end(), x, x + 3);
     p.velocity.insert(p.velocity.end(), v, v + 3);
-    p.angularVelocity.insert(p.angularVelocity.end(), {0.0, 0.0, 0.0});
+    const double inertia = 0.4 * q.m * radius * radius;
+    p.angularVelocity.insert(p.angularVelocity.end(), {q.L[0] / inertia, q.L[1] / inertia, q.L[2] / inertia});
     p.radius.push_back(radius);
-    p.mass.push_back(sph.mass[i]);
-    p.density.push_back(sph.mass[i] / (4.0 / 3.0 * M_PI * radius * radius * radius));
+    p.mass.push_back(q.m);
+    p.density.push_back(q.m / (4.0 / 3.0 * M_PI * radius * radius * radius));
     p.material.push_back(ejectaMat);
     p.id.push_back(nextId++);
     out.origin.push_back(1);

@@ -15,7 +15,9 @@
 //    angular momentum (about the origin): a uniform velocity shift, then a rigid rotation
 //    about their centre of mass (which leaves the linear momentum unchanged).
 // 5. Ejecta become DEM particles of equal mass and velocity (grain density of the bed), at
-//    their SPH positions, moved along their own velocity (which changes neither momentum nor
+//    their SPH positions (or, grouped, one per cube of the bed's mean particle diameter, at the
+//    group's centre of mass with its momentum and its angular momentum about that centre as
+//    spin), moved along their own velocity (which changes neither momentum nor
 //    angular momentum) to the nearest place, forward first, where they overlap nothing by more
 //    than 1 % of a radius and stay inside the container's walls; one with no such place keeps
 //    its position with a smaller radius (same mass and momentum) that fits, if one does, and
@@ -54,6 +56,7 @@ struct HandoffParams {
   int minNeighbours = 1;         // below this many SPH particles in the support: the nearest one's velocity
   double ejectaDensity = 0.0;    // kg/m³ of ejecta grains; 0: the bed's mean grain density
   int ejectaMaterial = -1;       // -1: the bed's first particle's material
+  bool groupEjecta = false;      // one particle per cube of the bed's mean diameter instead of per SPH particle
   // Where a sphere of radius r centred at x may be put (inside the container's walls); empty:
   // anywhere. Ejecta are moved along their velocity, forward first, then backward, to the
   // nearest place that is allowed and free.

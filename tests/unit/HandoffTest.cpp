@@ -282,3 +282,22 @@ TEST(Handoff, BadInputGetsNamedErrors) {
   EXPECT_NE(message(lattice(still), b, bad).find("EjectaSpeedLimit"), std::string::npos);
   EXPECT_NE(message(SphSnapshot{}, b, {}).find("no particles"), std::string::npos);
 }
+
+// Grouped ejecta: fewer, larger particles with the same mass, momentum and angular momentum.
+TEST(Handoff, GroupedEjectaKeepMassMomentumAndAngularMomentum) {
+  const SphSnapshot sph = lattice(zModel);
+  HandoffParams grouped;
+  grouped.groupEjecta = true;
+  const Check one = run(sph, zModel), c = run(sph, zModel, grouped);
+  std::size_t n1 = 0, n2 = 0;
+  for (int o : one.result.origin)
+    n1 += o == 1;
+  for (int o : c.result.origin)
+    n2 += o == 1;
+  std::printf("grouped ejecta: %zu particles instead of %zu; mass %.6f vs %.6f kg; |dP| %.1e, |dL| %.1e\n", n2, n1,
+              c.result.demEjecta.mass, c.result.sphEjecta.mass, c.pErr, c.lErr);
+  EXPECT_LT(n2, n1);
+  EXPECT_NEAR(c.result.demEjecta.mass, c.result.sphEjecta.mass, 1e-12 * c.result.sphEjecta.mass);
+  EXPECT_LT(c.pErr, 1e-10);
+  EXPECT_LT(c.lErr, 1e-10);
+}
