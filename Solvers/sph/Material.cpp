@@ -60,6 +60,8 @@ Material readMaterial(const std::string& path) {
       {"distention", [&](double v) { m.distention = v; }},
       {"crush_pe", [&](double v) { m.crushPe = v; }},
       {"crush_ps", [&](double v) { m.crushPs = v; }},
+      {"weibull_k", [&](double v) { m.weibullK = v; }},
+      {"weibull_m", [&](double v) { m.weibullM = v; }},
   };
   std::string line;
   int lineNo = 0;
@@ -121,6 +123,10 @@ Material readMaterial(const std::string& path) {
     throw InputError(path + ": moduli, yield stress and cohesion must not be negative");
   if (!(m.crushPe >= 0.0 && m.crushPs > m.crushPe))
     throw InputError(path + ": the crush curve needs 0 <= crush_pe < crush_ps");
+  if (!(m.weibullK >= 0.0) || !(m.weibullM > 0.0))
+    throw InputError(path + ": weibull_k must not be negative and weibull_m must be positive");
+  if (m.weibullK > 0.0 && !(m.bulkModulus > 0.0 && m.shearModulus > 0.0))
+    throw InputError(path + ": fracture (weibull_k) needs bulk_modulus and shear_modulus");
   if (m.strength != Material::Strength::None && !(m.shearModulus > 0.0))
     throw InputError(path + ": a material with strength needs a positive shear_modulus");
   if (!(m.frictionAngle >= 0.0 && m.frictionAngle < 90.0))

@@ -22,6 +22,8 @@ struct Material {
   double distention = 1.0;    // initial α = ρ_matrix / ρ_bulk (P–α porosity; 1: none)
   double crushPe = 1e6;       // Pa, elastic limit of the quadratic P–α crush curve
   double crushPs = 1e9;       // Pa, pressure at which the pores are closed (α = 1)
+  double weibullK = 0.0;      // m⁻³, Grady–Kipp flaw density n(ε) = k ε^m (0: no fracture)
+  double weibullM = 9.0;      // Weibull exponent m
   bool rigid = false;         // boundary particles: fixed in place, their density and stress
                               // evolve (dynamic boundary particles, Crespo et al. 2007)
   std::string source;         // where the values come from

@@ -2,8 +2,10 @@
 
 #include "common/CellList.h"
 #include "common/Error.h"
+#include "common/Random.h"
 #include "sph/Kernels.h"
 
+#include <Eigen/Dense>
 #include <omp.h>
 
 #include <algorithm>
@@ -152,6 +154,7 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
   }
   for (std::size_t i = 0; i < n; ++i)
     s_.h[i] = par_.kappa * std::cbrt(s_.mass[i] / s_.rho[i]);
+  assignFlaws();
   buildNeighbours(s_, 0.0);
   settle(s_, p_, c_);
   const double signal = computeRates(s_, p_, c_, k1_);
@@ -162,6 +165,55 @@ void SphSolver::imageShift(std::uint32_t code, double d[3]) const {
   const int sh[3] = {static_cast<int>(code % 3) - 1, static_cast<int>(code / 3 % 3) - 1, static_cast<int>(code / 9) - 1};
   for (int k = 0; k < 3; ++k)
     d[k] = sh[k] * (par_.boxHi[k] - par_.boxLo[k]);
+}
+
+void SphSolver::assignFlaws() {
+  // Benz & Asphaug (1995): N ln N flaws for the N particles of a brittle material, flaw j
+  // activating at ε_j = (j / (k V))^{1/m} (V the material's volume), each given to a random
+  // particle; a particle left without one gets the next. Thresholds are ascending per particle.
+  const std::size_t n = s_.size();
+  std::vector<std::vector<double>> flaws(n);
+  Random rng(par_.fractureSeed);
+  for (std::size_t m = 0; m < par_.materials.size(); ++m) {
+    const Material& mat = par_.materials[m];
+    if (!(mat.weibullK > 0.0))
+      continue;
+    std::vector<std::size_t> members;
+    double volume = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (static_cast<std::size_t>(s_.material[i]) == m)
+        members.push_back(i), volume += s_.mass[i] / s_.rho[i];
+    if (members.empty())
+      continue;
+    const double count = static_cast<double>(members.size());
+    const std::size_t total = static_cast<std::size_t>(std::max(count, count * std::log(count)));
+    std::size_t j = 1;
+    auto threshold = [&](std::size_t jj) { return std::pow(static_cast<double>(jj) / (mat.weibullK * volume), 1.0 / mat.weibullM); };
+    for (; j <= total; ++j)
+      flaws[members[std::min(members.size() - 1, static_cast<std::size_t>(rng.uniform() * count))]].push_back(threshold(j));
+    for (std::size_t i : members)
+      if (flaws[i].empty())
+        flaws[i].push_back(threshold(j++));
+  }
+  flawStart_.assign(n + 1, 0);
+  flawEps_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    flawEps_.insert(flawEps_.end(), flaws[i].begin(), flaws[i].end());
+    flawStart_[i + 1] = static_cast<std::uint32_t>(flawEps_.size());
+  }
+}
+
+void SphSolver::integrateDamage(SphState& s, const SphState& from, double dt, const Rates& a, const Rates* b) const {
+  if (a.dDc.empty())
+    return;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double rate = b ? 0.5 * (a.dDc[i] + b->dDc[i]) : a.dDc[i];
+    if (rate <= 0.0)
+      continue;
+    const double cap = b ? std::max(a.capD[i], b->capD[i]) : a.capD[i];
+    const double c = std::cbrt(from.damage[i]) + dt * rate;
+    s.damage[i] = std::max(from.damage[i], std::min({c * c * c, cap, 1.0})); // damage never heals
+  }
 }
 
 bool SphSolver::neighboursValid(const SphState& s, double extra) const {
@@ -407,6 +459,9 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
   r.drho.resize(n);
   r.du.resize(n);
   r.dS.resize(6 * n);
+  const bool hasFlaws = !flawEps_.empty();
+  r.dDc.assign(hasFlaws ? n : 0, 0.0);
+  r.capD.assign(hasFlaws ? n : 0, 0.0);
   std::vector<double> G(par_.materials.size());
   for (std::size_t m = 0; m < G.size(); ++m)
     G[m] = par_.materials[m].strength == Material::Strength::None ? 0.0 : par_.materials[m].shearModulus;
@@ -562,6 +617,31 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
       for (int k = 0; k < 6; ++k)
         dS[k] = 0.0;
     }
+    if (hasFlaws && flawStart_[a + 1] > flawStart_[a]) {
+      // Grady–Kipp: local strain from the largest principal (tensile) stress.
+      const Material& mat = par_.materials[static_cast<std::size_t>(s.material[a])];
+      Eigen::Matrix3d sigma;
+      sigma << Sa[0] - p[a], Sa[3], Sa[4], Sa[3], Sa[1] - p[a], Sa[5], Sa[4], Sa[5], Sa[2] - p[a];
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+      eig.computeDirect(sigma, Eigen::EigenvaluesOnly);
+      const double s1 = eig.eigenvalues()(2), D = s.damage[a];
+      const double Kb = mat.bulkModulus, Gm = mat.shearModulus, E = 9.0 * Kb * Gm / (3.0 * Kb + Gm);
+      double rate = 0.0, cap = 0.0;
+      if (s1 > 0.0 && D < 1.0) {
+        const double eps = s1 / ((1.0 - D) * E);
+        const double* f0 = &flawEps_[flawStart_[a]];
+        const double* f1 = &flawEps_[flawStart_[a + 1]];
+        const std::size_t active = static_cast<std::size_t>(std::upper_bound(f0, f1, eps) - f0);
+        if (active > 0) {
+          const double cg = 0.4 * std::sqrt((Kb + 4.0 * Gm / 3.0) / s.rho[a]);
+          const double Rs = std::cbrt(3.0 * s.mass[a] / (4.0 * M_PI * s.rho[a]));
+          rate = static_cast<double>(active) * cg / Rs;
+          cap = static_cast<double>(active) / static_cast<double>(f1 - f0);
+        }
+      }
+      r.dDc[a] = rate;
+      r.capD[a] = cap;
+    }
     maxSignal = std::max(maxSignal, signal / (0.5 * s.h[a]));
   }
   return maxSignal;
@@ -629,6 +709,7 @@ double SphSolver::step(double dt) {
     }
     for (std::size_t i = 0; i < 6 * n; ++i)
       mid.S[i] += dt * k1_.dS[i];
+    integrateDamage(mid, s_, dt, k1_, nullptr);
     settle(mid, pm, cm);
     computeRates(mid, pm, cm, k2);
     // Error of the Euler predictor against Heun's step, relative to each particle's own
@@ -669,6 +750,7 @@ double SphSolver::step(double dt) {
   }
   for (std::size_t i = 0; i < 6 * n; ++i)
     s_.S[i] += 0.5 * dt * (k1_.dS[i] + k2.dS[i]);
+  integrateDamage(s_, s_, dt, k1_, &k2); // reads each particle's start-of-step damage before writing it
   settle(s_, p_, c_);
   const double signal = computeRates(s_, p_, c_, k1_);
   const double grow = err > 0.0 ? std::min(2.0, 0.9 * std::sqrt(par_.errorTolerance / err)) : 2.0;

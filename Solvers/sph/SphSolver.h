@@ -4,8 +4,8 @@
 // energy in the symmetric forms of §2.2; Monaghan artificial viscosity (§2.3) and optional XSPH;
 // deviatoric stress from Hooke's law with the Jaumann rate; strength: von Mises for metals,
 // Drucker–Prager matched to the Mohr–Coulomb compression cone for granular material (§2.5);
-// P–α porosity with the quadratic crush curve (§2.6); a damage field D that weakens tension
-// and shear (set initially; its Grady–Kipp growth is not modelled yet); equations of state by
+// P–α porosity with the quadratic crush curve (§2.6); Grady–Kipp fracture (§2.7: Weibull
+// flaws, damage D growing as d(D^⅓)/dt = n_act c_g / R_s, weakening tension and shear); equations of state by
 // material; smoothing length following the density (h = κ (m/ρ)^{1/3}, support h); periodic or
 // open boundaries; uniform or point-mass gravity; Heun's predictor–corrector (RK2) with the
 // Courant and force time steps and error control (a step whose Euler predictor and Heun
@@ -46,6 +46,7 @@ struct SphParams {
   double kappa = 2.5;              // h = κ (m/ρ)^{1/3}
   double courant = 0.3;
   double forceFactor = 0.2;        // Δt ≤ forceFactor sqrt(h / |a|)
+  std::uint64_t fractureSeed = 1;  // random assignment of Grady–Kipp flaws to particles
   double skin = 0.15;               // neighbour-list margin, in units of the smallest h
   double errorTolerance = 0.02;    // largest relative Euler–Heun difference of a step (else retaken shorter)
   double minTimeStep = 0.0;        // a step below this stops the run (0: only a non-positive step)
@@ -87,7 +88,8 @@ public:
 
 private:
   struct Rates {
-    std::vector<double> dx, dv, drho, du, dS, dalpha;
+    std::vector<double> dx, dv, drho, du, dS; // dx: the XSPH correction (empty when off)
+    std::vector<double> dDc, capD;            // d(D^⅓)/dt and the cap n_act/n_tot (fracture)
   };
   struct Neighbours {
     std::vector<std::uint32_t> start; // CSR offsets, size n+1
@@ -95,6 +97,8 @@ private:
     std::vector<double> x, h;         // positions and smoothing lengths at the build
     double margin = 0.0, grow = 1.0;
   };
+  void assignFlaws();
+  void integrateDamage(SphState& s, const SphState& from, double dt, const Rates& a, const Rates* b) const;
   void buildNeighbours(const SphState& s, double margin);
   bool neighboursValid(const SphState& s, double extra) const;
   // Positions into the periodic box, h from ρ, ρ by summation when asked, then pressure and
@@ -114,6 +118,8 @@ private:
   SphState s_;
   SphParams par_;
   Neighbours nb_;
+  std::vector<std::uint32_t> flawStart_; // Grady–Kipp activation strains per particle (CSR, ascending)
+  std::vector<double> flawEps_;
   Rates k1_;                   // rates of the current state
   std::vector<double> p_, c_;  // pressure and sound speed of the current state
   double time_ = 0.0, stableStep_ = 0.0;
