@@ -114,6 +114,7 @@ CraterProfileResult craterProfile(const std::vector<double>& positions, const st
 
   // Top of the highest bulk particle in each (radial, azimuthal) bin.
   std::vector<double> top(static_cast<std::size_t>(nr) * na, -INFINITY);
+  std::vector<double> topR(top.size(), 0.0); // distance from the axis of the particle giving the top
   CraterProfileResult out;
   const double slab = par.slabHalfWidth > 0.0 ? par.slabHalfWidth : 4.0 * rmean;
   for (std::size_t i = 0; i < n; ++i) {
@@ -132,22 +133,26 @@ CraterProfileResult craterProfile(const std::vector<double>& positions, const st
     if (phi < 0.0)
       phi += 2.0 * M_PI;
     const int ia = std::min(na - 1, static_cast<int>(phi / (2.0 * M_PI) * na));
-    double& t = top[static_cast<std::size_t>(ir) * na + ia];
-    t = std::max(t, positions[3 * i + 2] + radii[i]);
+    const std::size_t bin = static_cast<std::size_t>(ir) * na + ia;
+    if (positions[3 * i + 2] + radii[i] > top[bin])
+      top[bin] = positions[3 * i + 2] + radii[i], topR[bin] = r;
   }
   out.radius.resize(nr);
   out.height.assign(nr, NAN);
   out.binsUsed.assign(nr, 0);
   std::vector<double> neg(nr, NAN), pos(nr, NAN);
   for (int ir = 0; ir < nr; ++ir) {
-    out.radius[ir] = (ir + 0.5) * dr;
-    double sum = 0.0, sumN = 0.0, sumP = 0.0;
+    // The profile point of a radial bin sits at the mean distance of the particles that give
+    // its tops, not at the bin's centre: on a slope the highest particle of a bin is at its
+    // upper edge, and the centre would shift the profile by up to half a bin.
+    double sum = 0.0, sumN = 0.0, sumP = 0.0, sumR = 0.0;
     int used = 0, usedN = 0, usedP = 0;
     for (int ia = 0; ia < na; ++ia) {
       const double t = top[static_cast<std::size_t>(ir) * na + ia];
       if (!std::isfinite(t))
         continue;
       sum += t, ++used;
+      sumR += topR[static_cast<std::size_t>(ir) * na + ia];
       const double phi = (ia + 0.5) * 2.0 * M_PI / na;
       const double c = std::cos(phi);
       if (c < -0.5)
@@ -155,6 +160,7 @@ CraterProfileResult craterProfile(const std::vector<double>& positions, const st
       else if (c > 0.5)
         sumP += t, ++usedP;
     }
+    out.radius[ir] = used > 0 ? sumR / used : (ir + 0.5) * dr;
     out.binsUsed[ir] = used;
     if (used > 0)
       out.height[ir] = sum / used;
