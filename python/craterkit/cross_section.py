@@ -3,8 +3,27 @@
 A slab of particles |y| <= half_width through the impact axis, seen along +y with a parallel
 projection, particles drawn as spheres of their true radius coloured by an array (height by
 default), the original surface as a dashed horizontal line and the central axis as a dashed
-vertical line.
+vertical line; with `measures` (from `crater_measures`), the measured crater diameter, rim
+diameter and depth as coloured lines with a legend.
 """
+
+MEASURE_COLORS = {"diameter": [0.85, 0.1, 0.1], "rim": [0.1, 0.3, 0.9], "depth": [0.1, 0.6, 0.2]}
+
+
+def crater_measures(profile):
+    """The summary of a CraterProfile proxy as a dict (diameter, rim_diameter, rim_height,
+    depth, volume, surface, found)."""
+    from paraview import servermanager
+    data = servermanager.Fetch(profile)
+    fd = data.GetFieldData()
+
+    def value(name):
+        array = fd.GetArray(name)
+        return array.GetValue(0) if array is not None else None
+    return {"diameter": value("CraterDiameter"), "rim_diameter": value("RimDiameter"),
+            "rim_height": value("RimHeight"), "depth": value("CraterDepth"),
+            "volume": value("ExcavatedVolume"), "surface": value("SurfaceHeight"),
+            "found": bool(value("CraterFound"))}
 
 from . import load_plugin
 
@@ -37,7 +56,7 @@ out.SetLines(lines)
 
 def render_cross_section(source, filename, half_width=None, color_by="Height",
                          surface_height=0.0, resolution=(1600, 900), label=None,
-                         color_range=None):
+                         color_range=None, measures=None):
     """Renders the cross-section of a particle source to a PNG and returns the slab proxy.
 
     source: a CraterKit particle proxy (points with a Radius array).
@@ -103,6 +122,31 @@ def render_cross_section(source, filename, half_width=None, color_by="Height",
     line_display.ColorArrayName = ["POINTS", ""]
     line_display.AmbientColor = line_display.DiffuseColor = [0.1, 0.1, 0.1]
     line_display.LineWidth = 2.0
+
+    if measures and measures.get("found"):
+        # Measured dimensions: diameter at the surface (red), rim to rim at the rim's height
+        # (blue), depth on the axis (green), drawn in front of the slab.
+        z0 = measures.get("surface", surface_height) or 0.0
+        y = -0.5 * (bounds[1] - bounds[0])
+        segments = [
+            ("diameter", [-0.5 * measures["diameter"], y, z0], [0.5 * measures["diameter"], y, z0]),
+            ("rim", [-0.5 * measures["rim_diameter"], y, z0 + measures["rim_height"]],
+             [0.5 * measures["rim_diameter"], y, z0 + measures["rim_height"]]),
+            ("depth", [0.0, y, z0], [0.0, y, z0 - measures["depth"]]),
+        ]
+        for key, p1, p2 in segments:
+            seg = simple.Line(Point1=p1, Point2=p2)
+            seg_display = simple.Show(seg, view)
+            seg_display.ColorArrayName = ["POINTS", ""]
+            seg_display.AmbientColor = seg_display.DiffuseColor = MEASURE_COLORS[key]
+            seg_display.LineWidth = 4.0
+        legend = simple.Text(Text=(f"crater diameter {measures['diameter']:.2f} m (red)\n"
+                                   f"rim diameter {measures['rim_diameter']:.2f} m (blue)\n"
+                                   f"depth {measures['depth']:.2f} m (green)"))
+        legend_display = simple.Show(legend, view)
+        legend_display.WindowLocation = "Upper Left Corner"
+        legend_display.FontSize = 20
+        legend_display.Color = [0.1, 0.1, 0.1]
 
     if label:
         text = simple.Text(Text=label)

@@ -50,6 +50,24 @@ ys = [section.GetPoint(i)[1] for i in range(section.GetNumberOfPoints())]
 t.check(max(abs(y) for y in ys) <= 4 * rp + 1e-9, "section slab wider than two diameters")
 t.check(field_value(section, "CraterDiameter") == d, "summary missing on the section output")
 
+# The cross-section picture with the measured lines (headless).
+from craterkit.cross_section import crater_measures, render_cross_section  # noqa: E402
+from vtkmodules.vtkIOImage import vtkPNGReader  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy as v2n  # noqa: E402
+measures = crater_measures(prof)
+t.check(abs(measures["diameter"] - d) < 1e-12 and measures["found"], "crater_measures does not read the summary")
+png = os.path.join(tempfile.mkdtemp(), "section.png")
+render_cross_section(reader, png, resolution=(480, 270), measures=measures, label="synthetic crater")
+image = vtkPNGReader()
+image.SetFileName(png)
+image.Update()
+pixels = v2n(image.GetOutput().GetPointData().GetScalars()).astype(int)
+red = ((pixels[:, 0] > 180) & (pixels[:, 1] < 80) & (pixels[:, 2] < 80)).sum()
+blue = ((pixels[:, 2] > 180) & (pixels[:, 0] < 80) & (pixels[:, 1] < 120)).sum()
+green = ((pixels[:, 1] > 120) & (pixels[:, 0] < 80) & (pixels[:, 2] < 100)).sum()
+# This crater has no raised rim: the rim line (blue) lies on the diameter line (red).
+t.check(red + blue > 50 and green > 20, f"measured lines not drawn ({red} red, {blue} blue, {green} green pixels)")
+
 with captured_vtk_messages() as log:
     bad = fetch(simple.CraterProfile(Input=simple.Sphere()), port=0)
 t.check(bad.GetNumberOfRows() == 0 and "Radius" in log["text"], f"missing sizes not reported: {log['text'][:300]!r}")
