@@ -15,7 +15,7 @@ vtkStandardNewMacro(vtkCraterKitFragmentAnalysis);
 
 vtkCraterKitFragmentAnalysis::vtkCraterKitFragmentAnalysis()
 {
-  this->SetNumberOfOutputPorts(2);
+  this->SetNumberOfOutputPorts(3);
 }
 
 int vtkCraterKitFragmentAnalysis::FillOutputPortInformation(int port, vtkInformation* info)
@@ -33,6 +33,8 @@ int vtkCraterKitFragmentAnalysis::RequestData(
   vtkPolyData* out = vtkPolyData::GetData(outputVector, 0);
   vtkTable* table = vtkTable::GetData(outputVector, 1);
   FragmentResult r;
+  EjectaStatistics ej;
+  double surface = 0.0;
   const bool ok = b::run(this, [&] {
     const vtkIdType n = in ? in->GetNumberOfPoints() : 0;
     if (n == 0)
@@ -63,6 +65,9 @@ int vtkCraterKitFragmentAnalysis::RequestData(
           p.bonds.emplace_back(static_cast<std::size_t>(ids->GetId(k)), static_cast<std::size_t>(ids->GetId(k + 1)));
     }
     r = analyseFragments(x, rad, m, v, p);
+    surface = this->SurfaceFromInput ? b::fieldScalar(in->GetFieldData(), "SurfaceHeight", this->SurfaceHeight)
+                                     : this->SurfaceHeight;
+    ej = ejectaStatistics(x, rad, m, v, surface, this->ImpactAxis);
   });
   if (!ok)
     return 0;
@@ -87,8 +92,15 @@ int vtkCraterKitFragmentAnalysis::RequestData(
   table->AddColumn(b::doubleArray("Velocity", 3, velocity));
   table->AddColumn(b::doubleArray("CumulativeMassFraction", 1, r.cumulativeMass));
 
-  for (vtkFieldData* fd : { out->GetFieldData(), table->GetFieldData() })
+  vtkTable* ejecta = vtkTable::GetData(outputVector, 2);
+  ejecta->AddColumn(b::doubleArray("Speed", 1, ej.speed));
+  ejecta->AddColumn(b::doubleArray("MassAbove", 1, ej.massAbove));
+  for (vtkFieldData* fd : { out->GetFieldData(), table->GetFieldData(), ejecta->GetFieldData() })
   {
+    b::addField(fd, "EjectaCount", static_cast<double>(ej.count));
+    b::addField(fd, "EjectaMass", ej.mass);
+    b::addField(fd, "MeanEjectionAngle", ej.meanAngle);
+    b::addField(fd, "EjectaSurfaceHeight", surface);
     b::addField(fd, "FragmentCount", static_cast<double>(nf));
     b::addField(fd, "Fragmentation", r.fragmentation);
     b::addField(fd, "LargestMassFraction", r.largestMassFraction);
@@ -109,4 +121,7 @@ void vtkCraterKitFragmentAnalysis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CloudOrigin: " << this->CloudOrigin[0] << " " << this->CloudOrigin[1] << " " << this->CloudOrigin[2]
      << "\n";
   os << indent << "CloudStart: " << this->CloudStart << "\n";
+  os << indent << "SurfaceFromInput: " << this->SurfaceFromInput << "\n";
+  os << indent << "SurfaceHeight: " << this->SurfaceHeight << "\n";
+  os << indent << "ImpactAxis: " << this->ImpactAxis[0] << " " << this->ImpactAxis[1] << "\n";
 }

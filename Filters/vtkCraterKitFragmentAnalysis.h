@@ -8,7 +8,10 @@
  * Mass, Centre, Velocity, CumulativeMassFraction). Field data: FragmentCount, Fragmentation
  * F = N_fragments / N_particles, LargestMassFraction, and for the particles past CloudStart
  * along CloudAxis: CloudParticles, CloudAxialLength, CloudRadialExtent, CloudRatio (L_a / L_r)
- * and CloudFrontSpeed. Thin adapter over craterkit::analyseFragments.
+ * and CloudFrontSpeed. Output 2 (vtkTable): crater ejecta (particles above the original
+ * surface moving up): Speed (decreasing) and MassAbove; field data EjectaCount, EjectaMass,
+ * MeanEjectionAngle (degrees from the horizontal, mass-weighted; the Z-model gives 45° for
+ * Z = 3). Thin adapter over craterkit::analyseFragments and craterkit::ejectaStatistics.
  */
 #ifndef vtkCraterKitFragmentAnalysis_h
 #define vtkCraterKitFragmentAnalysis_h
@@ -31,6 +34,12 @@ public:
   vtkGetVector3Macro(CloudOrigin, double);
   vtkSetMacro(CloudStart, double);
   vtkGetMacro(CloudStart, double);
+  vtkSetMacro(SurfaceFromInput, int);
+  vtkGetMacro(SurfaceFromInput, int);
+  vtkSetMacro(SurfaceHeight, double);
+  vtkGetMacro(SurfaceHeight, double);
+  vtkSetVector2Macro(ImpactAxis, double);
+  vtkGetVector2Macro(ImpactAxis, double);
 
 protected:
   vtkCraterKitFragmentAnalysis();
@@ -46,6 +55,9 @@ private:
   double CloudAxis[3] = { 0.0, 0.0, -1.0 };
   double CloudOrigin[3] = { 0.0, 0.0, 0.0 };
   double CloudStart = 0.0;
+  int SurfaceFromInput = 1;
+  double SurfaceHeight = 0.0;
+  double ImpactAxis[2] = { 0.0, 0.0 };
 };
 
 #endif

@@ -143,4 +143,36 @@ FragmentResult analyseFragments(const std::vector<double>& x, const std::vector<
   return out;
 }
 
+EjectaStatistics ejectaStatistics(const std::vector<double>& x, const std::vector<double>& r,
+                                  const std::vector<double>& m, const std::vector<double>& v, double z0,
+                                  const double axis[2]) {
+  EjectaStatistics out;
+  std::vector<std::pair<double, double>> bySpeed; // (speed, mass)
+  double angleSum = 0.0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const double* p = &x[3 * i];
+    const double* u = &v[3 * i];
+    if (!(p[2] > z0 + r[i]) || !(u[2] > 0.0))
+      continue;
+    const double dx = p[0] - axis[0], dy = p[1] - axis[1], rho = std::hypot(dx, dy);
+    const double outward = rho > 0.0 ? (u[0] * dx + u[1] * dy) / rho : std::hypot(u[0], u[1]);
+    const double angle = std::atan2(u[2], outward) * 180.0 / M_PI;
+    ++out.count;
+    out.mass += m[i];
+    angleSum += m[i] * angle;
+    bySpeed.emplace_back(std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]), m[i]);
+  }
+  if (out.count == 0)
+    return out;
+  out.meanAngle = angleSum / out.mass;
+  std::sort(bySpeed.begin(), bySpeed.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  double cum = 0.0;
+  for (const auto& [s, mm] : bySpeed) {
+    cum += mm;
+    out.speed.push_back(s);
+    out.massAbove.push_back(cum);
+  }
+  return out;
+}
+
 } // namespace craterkit

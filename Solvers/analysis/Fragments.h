@@ -42,6 +42,21 @@ struct FragmentResult {
   double axialLength = 0.0, radialExtent = 0.0, ratio = 0.0, frontSpeed = 0.0;
 };
 
+// Ejecta of a crater (PHYSICS.md §4.3–4.4): particles above the original surface (centre
+// higher than z0 + radius) moving upwards. Their ejection angle is measured from the horizontal
+// between the upward speed and the speed away from the impact axis (a ballistic particle keeps
+// it while gravity is slow to act, as in microgravity), mass-weighted on average; the Maxwell
+// Z-model gives atan(Z − 2): 45° for Z = 3. Also the mass launched above each speed.
+struct EjectaStatistics {
+  std::size_t count = 0;
+  double mass = 0.0;
+  double meanAngle = 0.0;                // degrees, mass-weighted
+  std::vector<double> speed, massAbove;  // speeds in decreasing order; mass at or above each
+};
+EjectaStatistics ejectaStatistics(const std::vector<double>& positions, const std::vector<double>& radii,
+                                  const std::vector<double>& masses, const std::vector<double>& velocities,
+                                  double surfaceHeight, const double axis[2]);
+
 FragmentResult analyseFragments(const std::vector<double>& positions, const std::vector<double>& radii,
                                 const std::vector<double>& masses, const std::vector<double>& velocities,
                                 const FragmentParams& params);

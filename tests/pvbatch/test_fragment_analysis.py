@@ -1,6 +1,7 @@
 """FragmentAnalysis through ParaView on hand-built particles read from a LAMMPS dump: ten
 touching spheres in a row and five separate ones flying along +z: six fragments, F = 6/15,
-the fragment table, the FragmentId array and the cloud's length, extent and front speed."""
+the fragment table, the FragmentId array, the cloud's length, extent and front speed, and the
+ejecta statistics."""
 
 import os
 import sys
@@ -38,6 +39,11 @@ t.check(field_value(out, "CloudParticles") == 5 and abs(field_value(out, "CloudA
         "cloud particles or axial length wrong")
 t.check(abs(field_value(out, "CloudRadialExtent") - 4.0) < 1e-9 and abs(field_value(out, "CloudFrontSpeed") - 7.0) < 1e-9,
         "cloud radial extent or front speed wrong")
+ejecta = fetch(frag, port=2)
+t.check(field_value(out, "EjectaCount") == 5 and abs(field_value(out, "MeanEjectionAngle") - 90.0) < 1e-9,
+        "the five rising particles are not the ejecta, or their angle is not 90 degrees")
+t.check(ejecta.GetNumberOfRows() == 5 and ejecta.GetColumnByName("MassAbove").GetValue(4) == 5.0,
+        "ejecta table wrong")
 with captured_vtk_messages() as log:
     bad = fetch(simple.FragmentAnalysis(Input=simple.Sphere()))
 t.check(bad.GetNumberOfPoints() == 0 and "Radius" in log["text"], f"missing arrays not reported: {log['text'][:300]!r}")

@@ -137,3 +137,29 @@ TEST(Fragments, FragmentationAndCloudShapeOfHandBuiltClouds) {
   bad.bonds = {{0, 999999}};
   EXPECT_THROW(analyseFragments(x, r, m, v, bad), InputError);
 }
+
+// Ejecta leaving along the Maxwell Z-model's streamlines at the surface (θ = 90° from the
+// downward axis: u_θ / u_R = Z − 2) have the ejection angle atan(Z − 2): 45° for Z = 3 and
+// 56.3° for Z = 3.5; particles below the surface or falling back are not ejecta.
+TEST(Fragments, EjectaAnglesFollowTheZModel) {
+  for (double Z : {3.0, 3.5}) {
+    std::vector<double> x, r, m, v;
+    Random rng(3);
+    for (int k = 0; k < 500; ++k) {
+      const double R = rng.uniform(0.5, 2.0), phi = rng.uniform(0.0, 2.0 * M_PI);
+      const double uR = 0.1 / (R * R * R), uT = uR * (Z - 2.0); // at θ = 90°: e_R horizontal, e_θ up
+      x.insert(x.end(), {R * std::cos(phi), R * std::sin(phi), 0.02});
+      v.insert(v.end(), {uR * std::cos(phi), uR * std::sin(phi), uT});
+      r.push_back(0.01), m.push_back(rng.uniform(0.5, 2.0));
+    }
+    x.insert(x.end(), {1.0, 0.0, -0.5}), v.insert(v.end(), {0.0, 0.0, 1.0}), r.push_back(0.01), m.push_back(100.0);
+    x.insert(x.end(), {1.0, 0.0, 0.5}), v.insert(v.end(), {1.0, 0.0, -1.0}), r.push_back(0.01), m.push_back(100.0);
+    const double axis[2] = {0.0, 0.0};
+    const EjectaStatistics e = ejectaStatistics(x, r, m, v, 0.0, axis);
+    EXPECT_EQ(e.count, 500u);
+    EXPECT_NEAR(e.meanAngle, std::atan(Z - 2.0) * 180.0 / M_PI, 1e-9);
+    EXPECT_NEAR(e.massAbove.back(), e.mass, 1e-12);
+    for (std::size_t k = 1; k < e.speed.size(); ++k)
+      EXPECT_GE(e.speed[k - 1], e.speed[k]);
+  }
+}
