@@ -679,9 +679,11 @@ double SphSolver::step(double dt) {
     vmax = std::max(vmax, v2);
   }
   vmax = std::sqrt(vmax);
-  SphState mid;
-  Rates k2;
-  std::vector<double> pm, cm;
+  // The predictor's state and rates live in members, so a step allocates nothing.
+  SphState& mid = mid_;
+  Rates& k2 = k2_;
+  std::vector<double>& pm = pm_;
+  std::vector<double>& cm = cm_;
   double err = 0.0;
   std::size_t worst = 0;
   for (int attempt = 0;; ++attempt) {

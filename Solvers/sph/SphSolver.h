@@ -121,6 +121,9 @@ private:
   std::vector<std::uint32_t> flawStart_; // Grady–Kipp activation strains per particle (CSR, ascending)
   std::vector<double> flawEps_;
   Rates k1_;                   // rates of the current state
+  SphState mid_;               // the predictor stage (members: reused, not reallocated, each step)
+  Rates k2_;
+  std::vector<double> pm_, cm_;
   std::vector<double> p_, c_;  // pressure and sound speed of the current state
   double time_ = 0.0, stableStep_ = 0.0;
   std::size_t steps_ = 0;
