@@ -3,6 +3,7 @@
 #include "vtkCraterKitSolverBridge.h"
 
 #include "dem/DemSolver.h"
+#include "sph/SphRun.h"
 #include "io/ParticleFiles.h"
 
 #include <vtkInformation.h>
@@ -47,7 +48,7 @@ int FormatOf(const std::string& name)
     n.resize(n.size() - 3);
   if (EndsWith(n, ".ss"))
     return vtkCraterKitParticleReader::PKDGRAV_SS;
-  if (EndsWith(n, ".ckdem"))
+  if (EndsWith(n, ".ckdem") || EndsWith(n, ".cksph"))
     return vtkCraterKitParticleReader::CRATERKIT_CHECKPOINT;
   const std::string base = n.substr(n.find_last_of('/') == std::string::npos ? 0 : n.find_last_of('/') + 1);
   if (EndsWith(n, ".dump") || EndsWith(n, ".liggghts") || EndsWith(n, ".lammpstrj") ||
@@ -56,8 +57,46 @@ int FormatOf(const std::string& name)
   return vtkCraterKitParticleReader::AUTOMATIC;
 }
 
+// An SPH checkpoint (SPHImpact): positions, Velocity, Mass, Density, Material, Id and the SPH
+// state as extra arrays (Pressure is not stored: it follows from the material's equation of state).
+craterkit::ParticleFrame FrameOfSphCheckpoint(const std::string& path)
+{
+  using namespace craterkit;
+  double time = 0.0, next = 0.0;
+  std::size_t steps = 0;
+  const SphState s = readSphCheckpoint(path, time, steps, next);
+  ParticleFrame f;
+  f.time = time;
+  f.timestep = static_cast<long long>(steps);
+  ParticleSet& p = f.particles;
+  const std::size_t n = s.size();
+  p.position = s.x;
+  p.velocity = s.v;
+  p.angularVelocity.assign(3 * n, 0.0);
+  p.radius.assign(n, 0.0);
+  p.mass = s.mass;
+  p.density = s.rho;
+  p.material = s.material;
+  p.id.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    p.id[i] = static_cast<std::int64_t>(i);
+  f.hasVelocity = f.hasMass = f.hasDensity = f.hasMaterial = f.hasId = true;
+  std::vector<double> stress(6 * n);
+  for (std::size_t i = 0; i < n; ++i) // VTK symmetric-tensor order XX YY ZZ XY YZ XZ
+  {
+    const double* S = &s.S[6 * i];
+    double* o = &stress[6 * i];
+    o[0] = S[0], o[1] = S[1], o[2] = S[2], o[3] = S[3], o[4] = S[5], o[5] = S[4];
+  }
+  f.extra = { { "SmoothingLength", 1, s.h }, { "InternalEnergy", 1, s.u }, { "Distention", 1, s.alpha },
+    { "Damage", 1, s.damage }, { "DeviatoricStress", 6, stress } };
+  return f;
+}
+
 craterkit::ParticleFrame FrameOfCheckpoint(const std::string& path)
 {
+  if (EndsWith(Lower(path), ".cksph"))
+    return FrameOfSphCheckpoint(path);
   const craterkit::DemSolver solver = craterkit::DemSolver::readCheckpoint(path);
   craterkit::ParticleFrame f;
   f.particles = solver.particles();
@@ -115,7 +154,7 @@ void vtkCraterKitParticleReader::Load()
       cache->Times.push_back(cache->Single->time);
       break;
     default:
-      throw InputError(file + ": unknown particle format (extensions: .dump, .liggghts, .lammpstrj, .ss, .ckdem, optionally .gz); set Format");
+      throw InputError(file + ": unknown particle format (extensions: .dump, .liggghts, .lammpstrj, .ss, .ckdem, .cksph, optionally .gz); set Format");
   }
   // Time steps must increase; a dump whose snapshots do not gets their indices instead.
   for (std::size_t k = 1; k < cache->Times.size(); ++k)

@@ -70,6 +70,13 @@ writer = simple.SPHImpact(CheckpointFile=path, CheckpointInterval=5, **small)
 _, xw = state(writer, 2e-5)
 t.check(os.path.isfile(path), "no checkpoint written")
 t.check(np.array_equal(xw, x1), "checkpointing changed the run")
+# The checkpoint opens in ParaView like any particle file.
+ck = fetch(simple.OpenDataFile(path))
+ckx = vtk_to_numpy(ck.GetPoints().GetData())
+t.check(np.array_equal(ckx, xw) and abs(field_value(ck, "Time") - 2e-5) < 1e-15,
+        "the SPH checkpoint read back differs from the state it holds")
+t.check(all(ck.GetPointData().GetArray(a) is not None for a in ("Velocity", "Mass", "Distention", "DeviatoricStress")),
+        "the SPH checkpoint reader lacks arrays")
 resumed = simple.SPHImpact(CheckpointFile=path, ResumeFromCheckpoint=1, **small)
 _, xr = state(resumed, 4e-5)
 t.check(np.abs(xr - x2).max() < 1e-9, f"the resumed run differs by {np.abs(xr - x2).max():.3g} m")
