@@ -73,6 +73,7 @@ void vtkCraterKitSPHImpact::BuildRun()
   setup.cohesion = this->Cohesion;
   setup.surfaceGravity = this->SurfaceGravity;
   setup.particlesAcrossImpactor = this->ParticlesAcrossImpactor;
+  setup.container = this->TargetContainer;
   SphImpactProblem problem = buildImpact(setup);
   SphParams& p = problem.params;
   p.kernel = this->Kernel == WENDLAND_C2 ? SphParams::Kernel::WendlandC2 : SphParams::Kernel::CubicSpline;
@@ -82,6 +83,7 @@ void vtkCraterKitSPHImpact::BuildRun()
   p.courant = this->CourantNumber;
   p.minTimeStep = this->MinTimeStep;
   this->Spacing = problem.spacing;
+  this->ContainerParticles = problem.containerParticles;
   this->Run = std::make_unique<SphRun>(
     problem.state, p, static_cast<std::size_t>(std::max(0, this->KeptStates)));
   if (this->ResumeFromCheckpoint && !this->CheckpointFile.empty() &&
@@ -119,21 +121,26 @@ int vtkCraterKitSPHImpact::RequestData(
 
   const SphSolver& solver = this->Run->solver();
   const SphState& s = solver.state();
-  const vtkIdType n = static_cast<vtkIdType>(s.size());
-  b::setVertices(output, s.x);
+  // The container's particles are the last ones; like the DEM's walls they are not output.
+  const std::size_t nOut = s.size() - this->ContainerParticles;
+  const vtkIdType n = static_cast<vtkIdType>(nOut);
+  auto head = [nOut](const std::vector<double>& v, std::size_t components) {
+    return std::vector<double>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(nOut * components));
+  };
+  b::setVertices(output, head(s.x, 3));
 
   vtkPointData* pd = output->GetPointData();
-  pd->AddArray(b::doubleArray("Velocity", 3, s.v));
-  pd->AddArray(b::doubleArray("Density", 1, s.rho));
-  pd->AddArray(b::doubleArray("Mass", 1, s.mass));
-  pd->AddArray(b::doubleArray("Pressure", 1, solver.pressure()));
-  pd->AddArray(b::doubleArray("InternalEnergy", 1, s.u));
-  pd->AddArray(b::doubleArray("Distention", 1, s.alpha));
-  pd->AddArray(b::doubleArray("Damage", 1, s.damage));
-  pd->AddArray(b::doubleArray("SmoothingLength", 1, s.h));
-  pd->AddArray(b::doubleArray("SoundSpeed", 1, solver.soundSpeed()));
+  pd->AddArray(b::doubleArray("Velocity", 3, head(s.v, 3)));
+  pd->AddArray(b::doubleArray("Density", 1, head(s.rho, 1)));
+  pd->AddArray(b::doubleArray("Mass", 1, head(s.mass, 1)));
+  pd->AddArray(b::doubleArray("Pressure", 1, head(solver.pressure(), 1)));
+  pd->AddArray(b::doubleArray("InternalEnergy", 1, head(s.u, 1)));
+  pd->AddArray(b::doubleArray("Distention", 1, head(s.alpha, 1)));
+  pd->AddArray(b::doubleArray("Damage", 1, head(s.damage, 1)));
+  pd->AddArray(b::doubleArray("SmoothingLength", 1, head(s.h, 1)));
+  pd->AddArray(b::doubleArray("SoundSpeed", 1, head(solver.soundSpeed(), 1)));
   // VTK's symmetric tensor order is XX YY ZZ XY YZ XZ; the solver stores XX YY ZZ XY XZ YZ.
-  std::vector<double> stress(s.S.size());
+  std::vector<double> stress(6 * nOut);
   for (vtkIdType i = 0; i < n; ++i)
   {
     const double* S = &s.S[6 * i];
@@ -141,8 +148,8 @@ int vtkCraterKitSPHImpact::RequestData(
     o[0] = S[0], o[1] = S[1], o[2] = S[2], o[3] = S[3], o[4] = S[5], o[5] = S[4];
   }
   pd->AddArray(b::doubleArray("DeviatoricStress", 6, stress));
-  pd->AddArray(b::intArray("Material", s.material));
-  std::vector<std::int64_t> ids(s.size());
+  pd->AddArray(b::intArray("Material", std::vector<int>(s.material.begin(), s.material.begin() + n)));
+  std::vector<std::int64_t> ids(nOut);
   for (std::size_t i = 0; i < ids.size(); ++i)
     ids[i] = static_cast<std::int64_t>(i);
   pd->AddArray(b::idArray("Id", ids));
@@ -166,6 +173,8 @@ int vtkCraterKitSPHImpact::RequestData(
   b::addField(fd, "ParticleSpacing", this->Spacing);
   b::addField(fd, "SurfaceHeight", 0.0);
   b::addField(fd, "TargetRadius", this->TargetRadius);
+  b::addField(fd, "TargetContainer", this->TargetContainer ? 1.0 : 0.0);
+  b::addField(fd, "ContainerParticles", static_cast<double>(this->ContainerParticles));
   b::addField(fd, "TargetShape", std::string(this->TargetShape == HALF_SPACE ? "HalfSpace" : "Hemisphere"));
   b::addField(fd, "ImpactSpeed", this->ImpactSpeed);
   b::addField(fd, "ImpactAngle", this->ImpactAngle);
@@ -193,6 +202,7 @@ void vtkCraterKitSPHImpact::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Cohesion: " << this->Cohesion << "\n";
   os << indent << "SurfaceGravity: " << this->SurfaceGravity << "\n";
   os << indent << "ParticlesAcrossImpactor: " << this->ParticlesAcrossImpactor << "\n";
+  os << indent << "TargetContainer: " << this->TargetContainer << "\n";
   os << indent << "EndTime: " << this->EndTime << "\n";
   os << indent << "OutputInterval: " << this->OutputInterval << "\n";
   os << indent << "Kernel: " << this->Kernel << "\n";

@@ -65,6 +65,9 @@ public:
   vtkGetMacro(Cohesion, double);
   vtkSetMacro(SurfaceGravity, double);
   vtkGetMacro(SurfaceGravity, double);
+  vtkSetMacro(TargetContainer, bool);
+  vtkGetMacro(TargetContainer, bool);
+  vtkBooleanMacro(TargetContainer, bool);
   vtkSetMacro(ParticlesAcrossImpactor, int);
   vtkGetMacro(ParticlesAcrossImpactor, int);
   vtkSetMacro(EndTime, double);
@@ -117,6 +120,8 @@ private:
   double Cohesion = 0.0;
   double SurfaceGravity = 1.5e-4;
   int ParticlesAcrossImpactor = 4;
+  bool TargetContainer = false;
+  std::size_t ContainerParticles = 0; // the last ones of the run's state; not in the output
   double EndTime = 5e-4;
   double OutputInterval = 5e-5;
   int Kernel = CUBIC_SPLINE;

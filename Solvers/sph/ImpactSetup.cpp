@@ -121,18 +121,38 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
   }
   out.impactorParticles = ni;
 
-  const int m = static_cast<int>(std::ceil(R / dx));
+  const bool hemisphere = setup.targetShape == SphImpactSetup::Shape::Hemisphere;
   const double mt = out.targetBulkDensity * dx * dx * dx, rest[3] = {0, 0, 0};
-  for (int k = 0; k < m; ++k)
-    for (int j = -m; j < m; ++j)
-      for (int i = -m; i < m; ++i) {
-        const double x[3] = {(i + 0.5) * dx, (j + 0.5) * dx, -(k + 0.5) * dx};
-        if (setup.targetShape == SphImpactSetup::Shape::Hemisphere && x[0] * x[0] + x[1] * x[1] + x[2] * x[2] > R * R)
-          continue;
-        out.state.add(x, rest, mt, out.targetBulkDensity, 0.0, 1);
-        out.state.alpha.back() = tgt.distention;
-      }
+  // Inside the target (0), in its container shell (1), or outside both (-1).
+  const double wall = 3.0 * dx, Rw = R + wall;
+  auto where = [&](const double* x) {
+    if (hemisphere) {
+      const double r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+      return r2 <= R * R ? 0 : (setup.container && r2 <= Rw * Rw ? 1 : -1);
+    }
+    if (std::fabs(x[0]) <= R && std::fabs(x[1]) <= R && x[2] >= -R)
+      return 0;
+    return setup.container && std::fabs(x[0]) <= Rw && std::fabs(x[1]) <= Rw && x[2] >= -Rw ? 1 : -1;
+  };
+  const int m = static_cast<int>(std::ceil((setup.container ? Rw : R) / dx));
+  for (int pass = 0; pass < 2; ++pass) // the target first, then its container
+    for (int k = 0; k < m; ++k)
+      for (int j = -m; j < m; ++j)
+        for (int i = -m; i < m; ++i) {
+          const double x[3] = {(i + 0.5) * dx, (j + 0.5) * dx, -(k + 0.5) * dx};
+          if (where(x) != pass)
+            continue;
+          out.state.add(x, rest, mt, out.targetBulkDensity, 0.0, 1 + pass);
+          out.state.alpha.back() = tgt.distention;
+          out.containerParticles += static_cast<std::size_t>(pass);
+        }
   out.params.materials = {imp, tgt};
+  if (setup.container) {
+    Material shell = tgt;
+    shell.name = tgt.name + " (container)";
+    shell.rigid = true;
+    out.params.materials.push_back(shell);
+  }
   out.params.gravity[2] = -setup.surfaceGravity;
   return out;
 }

@@ -30,6 +30,11 @@ struct SphImpactSetup {
   double cohesion = -1.0;             // Pa; negative: the material's
   double surfaceGravity = 1.5e-4;     // m/s², along −z (Ryugu, GM/R² with R = 448 m)
   int particlesAcrossImpactor = 4;
+  // Hold the target in a rigid container of its own material, three spacings thick, around
+  // its buried faces (as GranularBed's bowl holds the DEM bed). Its particles are material 2,
+  // placed after the target's; they stand for the far field of a half-space, which takes up
+  // the momentum of the waves that reach it instead of letting a free target drift away.
+  bool container = false;
   double memoryLimitFraction = 0.8;   // refuse set-ups that need more of the machine's memory
   void validate() const;
 };
@@ -40,6 +45,7 @@ struct SphImpactProblem {
   double spacing = 0.0;               // dx, m
   double impactorRadius = 0.0;        // m
   std::size_t impactorParticles = 0;  // the first ones in the state
+  std::size_t containerParticles = 0; // the last ones in the state (material 2), if any
   double targetBulkDensity = 0.0;     // kg/m³
 };
 

@@ -137,6 +137,50 @@ TEST(SphImpact, CheckpointAndResumeContinueTheRun) {
   std::filesystem::remove(path);
 }
 
+// The rigid container: a shell of the expected volume that never moves, and the far field's
+// role: in a free hemisphere the shock sets the outer layer moving downwards once it gets
+// there (the whole target drifts); held in the container, that momentum goes into the wall.
+TEST(SphImpact, ContainerTakesUpTheMomentumThatReachesIt) {
+  SphImpactSetup setup = sciSetup();
+  setup.particlesAcrossImpactor = 3;
+  setup.targetRadius = 0.15;
+  const double tEnd = 3e-4;
+  double outer[2] = {0.0, 0.0};
+  for (int contained = 0; contained < 2; ++contained) {
+    setup.container = contained == 1;
+    const SphImpactProblem prob = buildImpact(setup);
+    const std::size_t n = prob.state.size(), nc = prob.containerParticles;
+    if (!contained) {
+      EXPECT_EQ(nc, 0u);
+    } else {
+      const double R = setup.targetRadius, Rw = R + 3.0 * prob.spacing;
+      const double shell = 2.0 / 3.0 * M_PI * (Rw * Rw * Rw - R * R * R) / std::pow(prob.spacing, 3);
+      EXPECT_NEAR(static_cast<double>(nc), shell, 0.05 * shell);
+      ASSERT_EQ(prob.params.materials.size(), 3u);
+      EXPECT_TRUE(prob.params.materials[2].rigid);
+      for (std::size_t i = n - nc; i < n; ++i)
+        ASSERT_EQ(prob.state.material[i], 2);
+    }
+    SphRun run(prob.state, prob.params);
+    const SphSolver& s = run.advanceTo(tEnd);
+    double moved = 0.0;
+    for (std::size_t i = n - nc; i < n; ++i)
+      for (int k = 0; k < 3; ++k)
+        moved = std::max(moved, std::abs(s.state().x[3 * i + k] - prob.state.x[3 * i + k]));
+    EXPECT_EQ(moved, 0.0);
+    // Downward momentum of the target's outer layer (beyond 0.8 R), per unit impactor momentum.
+    for (std::size_t i = prob.impactorParticles; i < n - nc; ++i) {
+      const double* x = &s.state().x[3 * i];
+      if (std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) > 0.8 * setup.targetRadius)
+        outer[contained] -= s.state().mass[i] * s.state().v[3 * i + 2] / 4000.0;
+    }
+  }
+  std::printf("outer-layer downward momentum at %.1e s: free %.3f, contained %.3f of the impactor's\n", tEnd,
+              outer[0], outer[1]);
+  EXPECT_GT(outer[0], 0.1);
+  EXPECT_LT(std::abs(outer[1]), 0.3 * outer[0]);
+}
+
 TEST(SphImpact, BadSetUpsGetClearErrorsBeforeAnyWork) {
   auto message = [](SphImpactSetup s) -> std::string {
     try {
