@@ -116,6 +116,7 @@ int vtkCraterKitImpactHandoff::RequestData(
     p.minNeighbours = this->MinNeighbours;
     p.ejectaDensity = this->EjectaDensity;
     p.groupEjecta = this->EjectaParticles == GROUPED_TO_BED_SIZE;
+    p.dropEjecta = this->EjectaParticles == DROPPED;
     // Ejecta stay inside the bed's container (GranularBed's field data).
     vtkFieldData* bfd = bedIn->GetFieldData();
     const std::string container = b::fieldString(bfd, "ContainerType");

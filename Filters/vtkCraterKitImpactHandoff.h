@@ -37,8 +37,8 @@ public:
   vtkGetMacro(HandoffTime, double);
   vtkSetMacro(EjectaDensity, double);
   vtkGetMacro(EjectaDensity, double);
-  enum EjectaModes { ONE_PER_SPH_PARTICLE = 0, GROUPED_TO_BED_SIZE = 1 };
-  vtkSetClampMacro(EjectaParticles, int, ONE_PER_SPH_PARTICLE, GROUPED_TO_BED_SIZE);
+  enum EjectaModes { ONE_PER_SPH_PARTICLE = 0, GROUPED_TO_BED_SIZE = 1, DROPPED = 2 };
+  vtkSetClampMacro(EjectaParticles, int, ONE_PER_SPH_PARTICLE, DROPPED);
   vtkGetMacro(EjectaParticles, int);
 
 protected:

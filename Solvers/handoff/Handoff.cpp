@@ -270,10 +270,13 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
 
   // The bed should cover the SPH target; say so when it does not.
   {
+    // (the bed's extent counts its particles' radii: its surface is their tops, not centres)
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (std::size_t i = 0; i < bed.size(); ++i)
-      for (int k = 0; k < 3; ++k)
-        lo[k] = std::min(lo[k], bed.position[3 * i + k]), hi[k] = std::max(hi[k], bed.position[3 * i + k]);
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], bed.position[3 * i + k] - bed.radius[i]);
+        hi[k] = std::max(hi[k], bed.position[3 * i + k] + bed.radius[i]);
+      }
     std::size_t outside = 0;
     for (std::size_t i : compact) {
       const double* x = &sph.x[3 * i];
@@ -371,6 +374,8 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   // 5. Ejecta as particles of equal mass and velocity, moved forward along their velocity
   // until they overlap nothing by more than 1 % of their radius.
   t0 = std::chrono::steady_clock::now();
+  if (params.dropEjecta) // escaping: out.sphEjecta keeps what they carry away
+    ejecta.clear();
   double rhoGrain = params.ejectaDensity, rmax = 0.0;
   if (rhoGrain == 0.0) {
     double m = 0.0, vol = 0.0;

@@ -57,6 +57,7 @@ struct HandoffParams {
   double ejectaDensity = 0.0;    // kg/m³ of ejecta grains; 0: the bed's mean grain density
   int ejectaMaterial = -1;       // -1: the bed's first particle's material
   bool groupEjecta = false;      // one particle per cube of the bed's mean diameter instead of per SPH particle
+  bool dropEjecta = false;       // no particles for the ejecta (they escape): only their totals are reported
   // Where a sphere of radius r centred at x may be put (inside the container's walls); empty:
   // anywhere. Ejecta are moved along their velocity, forward first, then backward, to the
   // nearest place that is allowed and free.

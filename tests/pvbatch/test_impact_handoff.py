@@ -49,6 +49,24 @@ ratio = field_value(out, "CompactMassRatio")
 t.check(ratio is not None and ratio > 0.0, "no compact mass ratio in field data")
 t.check(fd.GetAbstractArray("ContainerType") is not None, "the bed's container did not pass through")
 
+# Dropped ejecta: no particles for them, no bed particle evicted to make room for them (placed
+# ejecta may take a bed particle's place), and what they carry is reported.
+hand.EjectaParticles = "Dropped"
+dropped = fetch(hand)
+dorigin = vtk_to_numpy(dropped.GetPointData().GetArray("Origin"))
+t.check((dorigin == 1).sum() == 0 and (dorigin == 0).sum() >= (origin == 0).sum(),
+        f"Dropped kept {(dorigin == 1).sum()} ejecta or changed the bed ({(dorigin == 0).sum()} vs {(origin == 0).sum()})")
+ejecta_mass = field_value(dropped, "SPHEjectaMass")
+sph_fast = sm[np.linalg.norm(sv, axis=1) > 100.0].sum()
+t.check(ejecta_mass is not None and abs(ejecta_mass - sph_fast) < 1e-9 * sph_fast,
+        f"dropped ejecta mass {ejecta_mass} is not the SPH mass faster than the limit {sph_fast}")
+dm = vtk_to_numpy(dropped.GetPointData().GetArray("Mass"))
+dv = vtk_to_numpy(dropped.GetPointData().GetArray("Velocity"))
+P_fast = (sm[:, None] * sv)[np.linalg.norm(sv, axis=1) > 100.0].sum(axis=0)
+t.check(np.linalg.norm((dm[:, None] * dv).sum(axis=0) - (P_sph - P_fast)) < 1e-10 * scale,
+        "with the ejecta dropped, the particles do not carry the compact material's momentum")
+hand.EjectaParticles = "OnePerSPHParticle"
+
 surface = fetch(hand, port=1)
 t.check(surface.GetNumberOfCells() > 100, f"alpha-shape surface has {surface.GetNumberOfCells()} triangles")
 
