@@ -20,6 +20,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from craterkit import fetch, field_value, load_plugin
 from craterkit.cross_section import render_cross_section
+from craterkit.figures import side_by_side, speed_slab
 from craterkit.report import write_report
 
 
@@ -37,14 +38,6 @@ def parse_args(argv):
     p.add_argument("--output-dir", default="results/hybrid_handoff")
     p.add_argument("--width", type=int, default=900, help="width of each panel in pixels")
     return p.parse_args(argv)
-
-
-def speed_slab(simple, source, radius_expr):
-    """The source with Speed = |Velocity| and a Radius for drawing."""
-    speed = simple.Calculator(Input=source, ResultArrayName="Speed", Function="mag(Velocity)")
-    if radius_expr is None:
-        return speed
-    return simple.Calculator(Input=speed, ResultArrayName="Radius", Function=radius_expr)
 
 
 def main(argv):
@@ -109,16 +102,7 @@ def main(argv):
                          label=f"SPH at {args.handoff_time:.1e} s")
     render_cross_section(speed_slab(simple, hand, None), right, color_by="Speed", color_range=(0.0, vmax),
                          resolution=(args.width, height), label="DEM after the hand-off")
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 2, figsize=(2 * args.width / 100, height / 100), dpi=100)
-    for ax, path in zip(axes, (left, right)):
-        ax.imshow(plt.imread(path))
-        ax.axis("off")
-    fig.tight_layout()
-    combined = os.path.join(args.output_dir, "handoff.png")
-    fig.savefig(combined)
+    combined = side_by_side([left, right], os.path.join(args.output_dir, "handoff.png"), args.width, height)
 
     report = {
         "example": "hybrid_handoff",

@@ -1,0 +1,325 @@
+"""The Hayabusa2 SCI impact end to end: SPHImpact -> ImpactHandoff (a settled granular bed in a
+hemispherical container) -> DEMIntegrator until the crater has settled -> CraterProfile, after
+Zhang et al. (LPSC 2021). Writes under --output-dir: the velocity field before and after the
+hand-off side by side (figure1_handoff.png), the crater cross-section with its measures
+(figure2_crater.png), the profile plot (profile.png), and report.md / report.json with the
+measured diameter, rim diameter and depth next to the SCI crater and the Housen & Holsapple
+(2011) pi-scaling prediction for the run's own parameters, run times and conservation figures.
+
+The SCI impactor (2 kg of copper at 2 km/s, vertical) and target (regolith of 1190 kg/m^3,
+friction angle 30 degrees, no cohesion) are the defaults, and every parameter is an option.
+The gravity is one too, and it decides what a run costs: the DEM stage starts from the SPH
+state at the hand-off time, where the bed moves at tens of m/s, and must run until the crater
+has settled, about 2 sqrt(D/g); its steps grow as that speed over sqrt(g D). At Ryugu's
+1.5e-4 m/s^2 that is some 10^7 steps (days on two cores); the defaults therefore fire the SCI
+impactor at laboratory gravity (--gravity 9.81: a 2.2 m crater by pi-scaling, minutes), and
+`--gravity 1.5e-4` runs Ryugu itself (the estimate is printed before the DEM stage starts;
+checkpoints let it be resumed with --resume).
+
+    scripts/pvbatch examples/sci_crater.py --help
+"""
+
+import argparse
+import math
+import os
+import sys
+import time
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+from craterkit import fetch, field_value, load_plugin
+from craterkit.cross_section import crater_measures, render_cross_section
+from craterkit.figures import profile_plot, side_by_side, speed_slab
+from craterkit.report import write_report
+from craterkit.scaling import crater_diameter, formation_time
+
+RYUGU_GRAVITY = 1.5e-4  # m/s^2, GM/R^2 at the mean radius (PHYSICS.md 4.1)
+SCI_CRATER = {"name": "SCI", "diameter": 14.5, "rim_diameter": 18.0, "depth": 2.3}  # m, Zhang et al. 2021
+# The ejecta speed limit of Zhang et al. at Ryugu (1 m/s, three escape speeds) in units of the
+# crater's own speed scale sqrt(g D); other gravities use the same ratio (Froude scaling).
+EJECTA_LIMIT_RATIO = 1.0 / math.sqrt(RYUGU_GRAVITY * SCI_CRATER["diameter"])
+PACKING_FRACTION = {"RCP": 0.60, "HCP": 0.74}  # for the grain density giving the target's bulk density
+
+
+def say(message):
+    print(message, flush=True)
+
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0],
+                                formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    g = p.add_argument_group("impact")
+    g.add_argument("--impactor-mass", type=float, default=2.0, help="kg")
+    g.add_argument("--impactor-material", default="copper")
+    g.add_argument("--impact-speed", type=float, default=2000.0, help="m/s")
+    g.add_argument("--target-material", default="regolith")
+    g.add_argument("--porosity", type=float, default=-1.0, help="target porosity; negative: the material's")
+    g.add_argument("--friction-angle", type=float, default=30.0, help="degrees")
+    g.add_argument("--gravity", type=float, default=9.81,
+                   help=f"surface gravity in m/s^2 (Ryugu: {RYUGU_GRAVITY}); see the module help for the cost")
+    g = p.add_argument_group("SPH stage")
+    g.add_argument("--sph-resolution", type=int, default=4, help="SPH particles across the impactor")
+    g.add_argument("--sph-target-radius", type=float, default=0.3, help="SPH target hemisphere, m")
+    g.add_argument("--handoff-time", type=float, default=1e-3, help="s after contact")
+    g.add_argument("--ejecta-speed-limit", type=float, default=0.0,
+                   help="m/s; faster SPH material leaves as ejecta (dropped). 0: 1 m/s at Ryugu, "
+                        "Froude-scaled to the run's gravity and predicted crater")
+    g = p.add_argument_group("DEM stage")
+    g.add_argument("--particles", type=int, default=6000, help="DEM bed particles (sets their radius)")
+    g.add_argument("--packing", choices=["RCP", "HCP"], default="RCP")
+    g.add_argument("--bed-radius", type=float, default=0.0,
+                   help="hemispherical container radius, m; 0: 1.05 x the predicted crater diameter "
+                        "(the SCI study's 15 m bowl for a 14.5 m crater)")
+    g.add_argument("--dem-time", type=float, default=0.0,
+                   help="DEM time after the hand-off, s; 0: 1.5 sqrt(D/g) for the predicted D")
+    g.add_argument("--frames", type=int, default=6, help="DEM outputs (progress and the crater's growth)")
+    g.add_argument("--max-overlap", type=float, default=0.01, help="allowed overlap, fraction of a radius")
+    g.add_argument("--checkpoint", default="", help="DEM checkpoint file; default OUTPUT_DIR/dem.ckdem")
+    g.add_argument("--resume", action="store_true", help="continue the DEM stage from the checkpoint")
+    p.add_argument("--output-dir", default="results/sci_crater")
+    p.add_argument("--width", type=int, default=900, help="width of each picture panel in pixels")
+    args = p.parse_args(argv)
+    for name in ("impactor_mass", "impact_speed", "gravity", "handoff_time", "sph_target_radius"):
+        value = getattr(args, name)
+        if not (value > 0.0 and math.isfinite(value)):
+            p.error(f"--{name.replace('_', '-')} must be positive (got {value})")
+    for name in ("ejecta_speed_limit", "bed_radius", "dem_time"):
+        value = getattr(args, name)
+        if not (value >= 0.0 and math.isfinite(value)):
+            p.error(f"--{name.replace('_', '-')} must not be negative (got {value})")
+    if args.particles < 200:
+        p.error(f"--particles must be at least 200 (got {args.particles})")
+    if args.frames < 1:
+        p.error("--frames must be at least 1")
+    return args
+
+
+def material_value(name, key, default=None):
+    """A number from a material file under data/materials (rho0, distention, ...)."""
+    folder = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data", "materials")
+    path = os.path.join(folder, name + ".cfg")
+    if not os.path.isfile(path):
+        raise SystemExit(f"error: no material file {path}")
+    with open(path) as f:
+        for line in f:
+            k, _, value = line.split("#")[0].partition("=")
+            if k.strip() == key:
+                return float(value)
+    if default is None:
+        raise SystemExit(f"error: {path} has no {key}")
+    return default
+
+
+def speeds(data):
+    v = vtk_to_numpy(data.GetPointData().GetArray("Velocity"))
+    return np.linalg.norm(v, axis=1)
+
+
+def totals(data, grain_radius=None):
+    """Mass, momentum and kinetic energy of a particle set; with grain_radius, also the kinetic
+    energy of the bed (particles below one grain diameter above the original surface z = 0)
+    apart from the ejecta in flight above it, and their number."""
+    pd = data.GetPointData()
+    m = vtk_to_numpy(pd.GetArray("Mass"))
+    v = vtk_to_numpy(pd.GetArray("Velocity"))
+    ke = 0.5 * m * (v * v).sum(axis=1)
+    out = {"mass_kg": float(m.sum()), "momentum_kg_m_s": [float(x) for x in (m[:, None] * v).sum(axis=0)],
+           "kinetic_energy_J": float(ke.sum())}
+    if grain_radius is not None:
+        flying = vtk_to_numpy(data.GetPoints().GetData())[:, 2] > 2.0 * grain_radius
+        out["bed_kinetic_energy_J"] = float(ke[~flying].sum())
+        out["ejecta_in_flight"] = int(flying.sum())
+    return out
+
+
+def main(argv):
+    args = parse_args(argv)
+    os.makedirs(args.output_dir, exist_ok=True)
+    simple = load_plugin()
+    seconds = {}
+    report = {"example": "sci_crater"}
+
+    # Predictions for the run's own parameters.
+    rho_imp = material_value(args.impactor_material, "rho0")
+    rho_matrix = material_value(args.target_material, "rho0")
+    sph = simple.SPHImpact(ImpactorMaterial=args.impactor_material, ImpactorMass=args.impactor_mass,
+                           ImpactSpeed=args.impact_speed, TargetMaterial=args.target_material,
+                           TargetPorosity=args.porosity, FrictionAngle=args.friction_angle, Cohesion=0.0,
+                           SurfaceGravity=args.gravity, ParticlesAcrossImpactor=args.sph_resolution,
+                           TargetRadius=args.sph_target_radius, TargetContainer=1,
+                           EndTime=args.handoff_time, OutputInterval=args.handoff_time)
+    say(f"[1/5] SPH impact to {args.handoff_time:.2e} s")
+    start = time.time()
+    sph.UpdatePipeline(args.handoff_time)
+    sph_data = fetch(sph)
+    if sph_data.GetNumberOfPoints() == 0:
+        print("error: the SPH stage failed; see the message above", file=sys.stderr)
+        return 1
+    seconds["sph"] = round(time.time() - start, 1)
+    porosity = args.porosity if args.porosity >= 0.0 else \
+        1.0 - 1.0 / material_value(args.target_material, "distention", 1.0)
+    rho_bulk = rho_matrix * (1.0 - porosity)
+    d_pi = crater_diameter(args.impactor_mass, args.impact_speed, rho_imp, rho_bulk, args.gravity)
+    d_sci = crater_diameter(args.impactor_mass, args.impact_speed, rho_imp, rho_bulk, RYUGU_GRAVITY)
+    bed_radius = args.bed_radius or 1.05 * d_pi
+    dem_time = args.dem_time or 1.5 * formation_time(d_pi, args.gravity)
+    v_lim = args.ejecta_speed_limit or EJECTA_LIMIT_RATIO * math.sqrt(args.gravity * d_pi)
+    phi = PACKING_FRACTION[args.packing]
+    grain_radius = bed_radius * (phi / (2.0 * args.particles)) ** (1.0 / 3.0)
+    sph_tot = totals(sph_data)
+    s = speeds(sph_data)
+    say(f"      {sph_data.GetNumberOfPoints()} SPH particles, {int(field_value(sph_data, 'Step'))} steps, "
+        f"{seconds['sph']} s; kinetic energy {sph_tot['kinetic_energy_J']:.3g} J "
+        f"({sph_tot['kinetic_energy_J'] / (0.5 * args.impactor_mass * args.impact_speed ** 2):.2%} of the impact's); "
+        f"{int((s > v_lim).sum())} particles faster than the ejecta limit {v_lim:.3g} m/s")
+    say(f"      pi-scaling crater diameter for this run: {d_pi:.3g} m (Ryugu gravity: {d_sci:.3g} m); "
+        f"bowl radius {bed_radius:.3g} m, grains of {grain_radius:.3g} m, DEM time {dem_time:.3g} s")
+
+    say(f"[2/5] {args.packing} bed of about {args.particles} particles settled at g = {args.gravity:g} m/s^2")
+    start = time.time()
+    bed = simple.GranularBed(Packing=args.packing, Container="Bowl", ContainerRadius=bed_radius,
+                             ParticleRadius=grain_radius, SurfaceHeight=0.0, ParticleDensity=rho_bulk / phi,
+                             SettlingGravity=args.gravity, MaxParticles=max(10 * args.particles, 100000))
+    bed_data = fetch(bed)
+    if bed_data.GetNumberOfPoints() == 0:
+        print("error: the bed could not be built; see the message above", file=sys.stderr)
+        return 1
+    seconds["bed"] = round(time.time() - start, 1)
+    bed_phi = field_value(bed_data, "BulkPackingFraction")
+    say(f"      {bed_data.GetNumberOfPoints()} particles, packing fraction {bed_phi:.3f}, {seconds['bed']} s")
+
+    say(f"[3/5] hand-off (ejecta faster than {v_lim:.3g} m/s leave the domain)")
+    start = time.time()
+    hand = simple.ImpactHandoff(Input=sph, Bed=bed, EjectaSpeedLimit=v_lim, EjectaParticles="Dropped")
+    dem0 = fetch(hand)
+    if dem0.GetNumberOfPoints() == 0:
+        print("error: the hand-off failed; see the message above", file=sys.stderr)
+        return 1
+    seconds["handoff"] = round(time.time() - start, 1)
+    fd = dem0.GetFieldData()
+    vec = lambda name: [float(x) for x in fd.GetArray(name).GetTuple3(0)]  # noqa: E731
+    dem0_tot = totals(dem0, grain_radius)
+    vmax_dem = float(speeds(dem0).max())
+    say(f"      {dem0.GetNumberOfPoints()} DEM particles, {int(field_value(dem0, 'BedRemoved'))} carved; "
+        f"compact momentum SPH {vec('SPHCompactMomentum')[2]:.4g}, DEM {vec('DEMMappedMomentum')[2]:.4g} kg m/s (z); "
+        f"fastest DEM particle {vmax_dem:.3g} m/s")
+
+    # The DEM stiffness is set for the fastest particle the hand-off produced.
+    max_speed = max(1.2 * vmax_dem, 3.0 * math.sqrt(args.gravity * d_pi))
+    t0 = field_value(dem0, "Time")
+    steps_estimate = dem_time * max_speed * 30.0 / (math.pi * args.max_overlap * grain_radius)
+    say(f"[4/5] DEM to {t0 + dem_time:.3g} s: about {steps_estimate:.3g} steps of {dem0.GetNumberOfPoints()} particles "
+        f"(stiffness for {max_speed:.3g} m/s)")
+    checkpoint = args.checkpoint or os.path.join(args.output_dir, "dem.ckdem")
+    frames = [t0 + dem_time * (k + 1) / args.frames for k in range(args.frames)]
+    dem = simple.DEMIntegrator(Input=hand, Container="FromInput", GravityModel="Uniform",
+                               SurfaceGravity=[0.0, 0.0, -args.gravity], MaxExpectedSpeed=max_speed,
+                               MaxOverlap=args.max_overlap, EndTime=frames[-1],
+                               OutputInterval=dem_time / args.frames, KeptStates=0,
+                               CheckpointFile=checkpoint, CheckpointInterval=20000,
+                               ResumeFromCheckpoint=1 if args.resume else 0)
+    profile = simple.CraterProfile(Input=dem)
+    start = time.time()
+    growth = []
+    for t in frames:
+        dem.UpdatePipeline(t)
+        data = fetch(dem)
+        if data.GetNumberOfPoints() == 0:
+            print("error: the DEM stage failed; see the message above", file=sys.stderr)
+            return 1
+        m = crater_measures(profile)
+        now = totals(data, grain_radius)
+        growth.append({"time_s": t, "diameter_m": m["diameter"] if m["found"] else 0.0, "depth_m": m["depth"],
+                       "bed_kinetic_energy_J": now["bed_kinetic_energy_J"],
+                       "ejecta_in_flight": now["ejecta_in_flight"]})
+        say(f"      t = {t:.4g} s, {int(field_value(data, 'Step'))} steps, {time.time() - start:.0f} s: "
+            f"crater diameter {growth[-1]['diameter_m']:.3g} m, depth {m['depth']:.3g} m; bed kinetic energy "
+            f"{now['bed_kinetic_energy_J']:.3g} J, {now['ejecta_in_flight']} ejecta in flight")
+    seconds["dem"] = round(time.time() - start, 1)
+    dem_data = fetch(dem)
+    measures = crater_measures(profile)
+
+    say("[5/5] pictures and report")
+    height = int(args.width * 9 / 16)
+    s = speeds(sph_data)
+    vmax = float(np.percentile(s, 99)) if s.size else 1.0
+    left = os.path.join(args.output_dir, "sph.png")
+    right = os.path.join(args.output_dir, "dem.png")
+    at_handoff = simple.ForceTime(Input=sph, ForcedTime=args.handoff_time, IgnorePipelineTime=1)
+    render_cross_section(speed_slab(simple, at_handoff, "SmoothingLength/5"), left, color_by="Speed",
+                         color_range=(0.0, vmax), resolution=(args.width, height),
+                         label=f"SPH at {args.handoff_time:.1e} s")
+    render_cross_section(speed_slab(simple, hand), right, color_by="Speed", color_range=(0.0, vmax),
+                         resolution=(args.width, height), label="DEM after the hand-off")
+    figure1 = side_by_side([left, right], os.path.join(args.output_dir, "figure1_handoff.png"), args.width, height)
+    final = simple.ForceTime(Input=dem, ForcedTime=frames[-1], IgnorePipelineTime=1)
+    figure2 = os.path.join(args.output_dir, "figure2_crater.png")
+    render_cross_section(final, figure2, color_by="Height", resolution=(2 * args.width, height),
+                         label=f"{args.packing}, r = {grain_radius:.3g} m, N = {dem_data.GetNumberOfPoints()}, "
+                               f"g = {args.gravity:g} m/s^2, t = {frames[-1]:.3g} s",
+                         measures=measures)
+    table = fetch(profile)
+    radius = vtk_to_numpy(table.GetRowData().GetArray("Radius")) if table.IsA("vtkTable") else []
+    heights = vtk_to_numpy(table.GetRowData().GetArray("Height")) if table.IsA("vtkTable") else []
+    reference = dict(SCI_CRATER) if args.gravity == RYUGU_GRAVITY else {"name": "pi-scaling", "diameter": d_pi}
+    profile_png = profile_plot(radius, heights, os.path.join(args.output_dir, "profile.png"), measures, reference,
+                               title=f"crater profile at t = {frames[-1]:.3g} s")
+
+    dem_tot = totals(dem_data, grain_radius)
+    found = measures["found"]
+    report.update({
+        "gravity_m_s2": args.gravity,
+        "impactor": {"material": args.impactor_material, "mass_kg": args.impactor_mass,
+                     "speed_m_s": args.impact_speed, "density_kg_m3": rho_imp},
+        "target": {"material": args.target_material, "bulk_density_kg_m3": round(rho_bulk, 1),
+                   "porosity": round(porosity, 4), "friction_angle_deg": args.friction_angle},
+        "crater_diameter_m": measures["diameter"] if found else None,
+        "rim_diameter_m": measures["rim_diameter"] if found else None,
+        "crater_depth_m": measures["depth"] if found else None,
+        "rim_height_m": measures["rim_height"] if found else None,
+        "pi_scaling_diameter_m": round(d_pi, 4),
+        "diameter_over_pi_scaling": round(measures["diameter"] / d_pi, 3) if found else None,
+        "pi_scaling_diameter_at_ryugu_m": round(d_sci, 3),
+        "sci_crater_m": SCI_CRATER,
+        "sph_particles": sph_data.GetNumberOfPoints(),
+        "sph_resolution": args.sph_resolution,
+        "handoff_time_s": args.handoff_time,
+        "ejecta_speed_limit_m_s": round(v_lim, 4),
+        "sph_totals_at_handoff": sph_tot,
+        "sph_ejecta_dropped": {"mass_kg": field_value(dem0, "SPHEjectaMass"), "momentum_kg_m_s": vec("SPHEjectaMomentum")},
+        "sph_compact_momentum_kg_m_s": vec("SPHCompactMomentum"),
+        "dem_mapped_momentum_kg_m_s": vec("DEMMappedMomentum"),
+        "sph_compact_angular_momentum": vec("SPHCompactAngularMomentum"),
+        "dem_mapped_angular_momentum": vec("DEMMappedAngularMomentum"),
+        "compact_mass_ratio_dem_to_sph": field_value(dem0, "CompactMassRatio"),
+        "packing": args.packing,
+        "bed_particles": bed_data.GetNumberOfPoints(),
+        "bed_packing_fraction": bed_phi,
+        "grain_radius_m": round(grain_radius, 5),
+        "bowl_radius_m": round(bed_radius, 4),
+        "bed_carved": int(field_value(dem0, "BedRemoved")),
+        "dem_totals_after_handoff": dem0_tot,
+        "dem_max_expected_speed_m_s": round(max_speed, 3),
+        "dem_end_time_s": field_value(dem_data, "Time"),
+        "dem_steps": int(field_value(dem_data, "Step")),
+        "dem_totals_at_end": dem_tot,
+        "crater_growth": growth,
+        "seconds": seconds,
+        "images": [os.path.basename(figure1), os.path.basename(figure2), profile_png],
+    })
+    write_report(args.output_dir, "the SCI impact, SPH to DEM", os.path.basename(figure2), report)
+    with open(os.path.join(args.output_dir, "report.md"), "a") as f:
+        f.write(f"\n![hand-off]({os.path.basename(figure1)})\n\n![profile]({profile_png})\n")
+    if found:
+        say(f"crater diameter {measures['diameter']:.3g} m ({measures['diameter'] / d_pi:.2f} x pi-scaling "
+            f"{d_pi:.3g} m), rim diameter {measures['rim_diameter']:.3g} m, depth {measures['depth']:.3g} m")
+    else:
+        say("no crater below the original surface at the end of the DEM stage")
+    say(f"wrote {args.output_dir}/report.md, report.json, {os.path.basename(figure1)}, "
+        f"{os.path.basename(figure2)}, {profile_png}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

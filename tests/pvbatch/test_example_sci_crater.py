@@ -1,0 +1,46 @@
+"""Runs examples/sci_crater.py at its smallest size (the SCI impactor and regolith at 1000 m/s^2,
+where the DEM stage is short) and checks what it wrote: the hand-off carried the compact SPH
+material's momentum over exactly and the dropped ejecta account for the rest, the DEM bed lost
+energy as it settled, the pi-scaling prediction agrees with the values computed by hand in
+PHYSICS.md section 4.2, and the pictures and report exist."""
+
+import json
+import os
+import sys
+
+import numpy as np
+
+from craterkit.scaling import crater_diameter
+from craterkit.testing import Checker, run_example
+
+source_dir, out = sys.argv[1], sys.argv[2]
+t = Checker("example sci_crater")
+code = run_example(source_dir, "sci_crater", ["--gravity", "1000", "--particles", "1500", "--sph-resolution", "3",
+                                              "--frames", "2", "--width", "500", "--output-dir", out])
+t.check(code == 0, f"example exited with {code}")
+r = json.load(open(os.path.join(out, "report.json")))
+
+sph = r["sph_totals_at_handoff"]
+scale = np.linalg.norm(sph["momentum_kg_m_s"]) + np.linalg.norm(r["sph_ejecta_dropped"]["momentum_kg_m_s"]) + 1.0
+t.check(np.allclose(r["dem_mapped_momentum_kg_m_s"], r["sph_compact_momentum_kg_m_s"], rtol=0, atol=1e-10 * scale),
+        "compact momentum not carried over")
+t.check(np.allclose(np.add(r["sph_compact_momentum_kg_m_s"], r["sph_ejecta_dropped"]["momentum_kg_m_s"]),
+                    sph["momentum_kg_m_s"], rtol=0, atol=1e-9 * scale),
+        "compact and dropped ejecta momentum do not add up to the SPH total")
+t.check(np.allclose(r["dem_totals_after_handoff"]["momentum_kg_m_s"], r["sph_compact_momentum_kg_m_s"], rtol=0,
+                    atol=1e-9 * scale), "the DEM particles carry more than the mapped momentum (bed at rest?)")
+t.check(r["dem_steps"] > 1000, f"only {r['dem_steps']} DEM steps")
+end, start = r["dem_totals_at_end"]["bed_kinetic_energy_J"], r["dem_totals_after_handoff"]["bed_kinetic_energy_J"]
+t.check(end < 0.5 * start, f"the bed did not come to rest: kinetic energy {start:.3g} J -> {end:.3g} J")
+# The scaling law as implemented against PHYSICS.md 4.2 (computed there: 14.5 m at g = 1.5e-4
+# and 14.9 m at 1.3e-4 for 2 kg of copper at 2 km/s into 1190 kg/m^3).
+t.check(abs(r["pi_scaling_diameter_at_ryugu_m"] - 14.5) < 0.15, f"SCI pi-scaling {r['pi_scaling_diameter_at_ryugu_m']}")
+t.check(abs(crater_diameter(2.0, 2000.0, 8900.0, 1190.0, 1.3e-4) - 14.9) < 0.15, "pi-scaling at 1.3e-4 m/s^2")
+t.check(abs(r["target"]["bulk_density_kg_m3"] - 1190.0) < 2.0, f"target bulk density {r['target']['bulk_density_kg_m3']}")
+for image in r["images"]:
+    path = os.path.join(out, image)
+    t.check(os.path.isfile(path) and os.path.getsize(path) > 10000, f"{image} missing or empty")
+md = open(os.path.join(out, "report.md")).read()
+t.check("pi_scaling_diameter_m" in md and "figure1_handoff.png" in md, "report.md lacks the prediction or a figure")
+print(f"crater diameter {r['crater_diameter_m']} m vs pi-scaling {r['pi_scaling_diameter_m']} m")
+sys.exit(t.close())
