@@ -18,7 +18,7 @@ import time
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-from craterkit import fetch, field_value, load_plugin
+from craterkit import fetch, fetch_stage, field_value, load_plugin
 from craterkit.cross_section import render_cross_section
 from craterkit.figures import side_by_side, speed_slab
 from craterkit.report import write_report
@@ -51,11 +51,7 @@ def main(argv):
     sph = simple.SPHImpact(ParticlesAcrossImpactor=args.particles_across_impactor,
                            TargetRadius=args.target_radius, EndTime=args.handoff_time,
                            OutputInterval=args.handoff_time)
-    sph.UpdatePipeline(args.handoff_time)
-    sph_data = fetch(sph)
-    if sph_data.GetNumberOfPoints() == 0:
-        print("error: the SPH run failed; see the error above", file=sys.stderr)
-        return 1
+    sph_data = fetch_stage(sph, "SPH run", args.handoff_time)
     timings["sph_s"] = round(time.time() - start, 2)
     print(f"      {sph_data.GetNumberOfPoints()} SPH particles to t = {field_value(sph_data, 'Time'):.2e} s, "
           f"{int(field_value(sph_data, 'Step'))} steps, {timings['sph_s']} s", flush=True)
@@ -65,10 +61,7 @@ def main(argv):
     bed = simple.GranularBed(Packing=args.packing, Container="Bowl", ContainerRadius=args.bed_radius,
                              ParticleRadius=args.particle_radius, SurfaceHeight=0.0)
     hand = simple.ImpactHandoff(Input=sph, Bed=bed, EjectaSpeedLimit=args.ejecta_speed_limit)
-    dem0 = fetch(hand)
-    if dem0.GetNumberOfPoints() == 0:
-        print("error: the hand-off failed; see the error above", file=sys.stderr)
-        return 1
+    dem0 = fetch_stage(hand, "hand-off")
     timings["bed_and_handoff_s"] = round(time.time() - start, 2)
     fd = dem0.GetFieldData()
     vec = lambda name: list(fd.GetArray(name).GetTuple3(0))  # noqa: E731
@@ -82,11 +75,7 @@ def main(argv):
     t0 = field_value(dem0, "Time")
     dem = simple.DEMIntegrator(Input=hand, MaxExpectedSpeed=2500.0, EndTime=t0 + args.dem_time,
                                OutputInterval=args.dem_time)
-    dem.UpdatePipeline(t0 + args.dem_time)
-    dem_data = fetch(dem)
-    if dem_data.GetNumberOfPoints() == 0:
-        print("error: the DEM run failed; see the error above", file=sys.stderr)
-        return 1
+    dem_data = fetch_stage(dem, "DEM run", t0 + args.dem_time)
     timings["dem_s"] = round(time.time() - start, 2)
     profile = simple.CraterProfile(Input=dem)
     prof = fetch(profile)

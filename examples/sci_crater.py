@@ -28,7 +28,7 @@ import time
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-from craterkit import fetch, field_value, load_plugin
+from craterkit import fetch, fetch_stage, field_value, load_plugin
 from craterkit.cross_section import crater_measures, render_cross_section
 from craterkit.figures import profile_plot, side_by_side, speed_slab
 from craterkit.report import write_report
@@ -151,11 +151,7 @@ def main(argv):
                            EndTime=args.handoff_time, OutputInterval=args.handoff_time)
     say(f"[1/5] SPH impact to {args.handoff_time:.2e} s")
     start = time.time()
-    sph.UpdatePipeline(args.handoff_time)
-    sph_data = fetch(sph)
-    if sph_data.GetNumberOfPoints() == 0:
-        print("error: the SPH stage failed; see the message above", file=sys.stderr)
-        return 1
+    sph_data = fetch_stage(sph, "SPH stage", args.handoff_time)
     seconds["sph"] = round(time.time() - start, 1)
     porosity = args.porosity if args.porosity >= 0.0 else \
         1.0 - 1.0 / material_value(args.target_material, "distention", 1.0)
@@ -181,10 +177,7 @@ def main(argv):
     bed = simple.GranularBed(Packing=args.packing, Container="Bowl", ContainerRadius=bed_radius,
                              ParticleRadius=grain_radius, SurfaceHeight=0.0, ParticleDensity=rho_bulk / phi,
                              SettlingGravity=args.gravity, MaxParticles=max(10 * args.particles, 100000))
-    bed_data = fetch(bed)
-    if bed_data.GetNumberOfPoints() == 0:
-        print("error: the bed could not be built; see the message above", file=sys.stderr)
-        return 1
+    bed_data = fetch_stage(bed, "bed")
     seconds["bed"] = round(time.time() - start, 1)
     bed_phi = field_value(bed_data, "BulkPackingFraction")
     say(f"      {bed_data.GetNumberOfPoints()} particles, packing fraction {bed_phi:.3f}, {seconds['bed']} s")
@@ -192,10 +185,7 @@ def main(argv):
     say(f"[3/5] hand-off (ejecta faster than {v_lim:.3g} m/s leave the domain)")
     start = time.time()
     hand = simple.ImpactHandoff(Input=sph, Bed=bed, EjectaSpeedLimit=v_lim, EjectaParticles="Dropped")
-    dem0 = fetch(hand)
-    if dem0.GetNumberOfPoints() == 0:
-        print("error: the hand-off failed; see the message above", file=sys.stderr)
-        return 1
+    dem0 = fetch_stage(hand, "hand-off")
     seconds["handoff"] = round(time.time() - start, 1)
     fd = dem0.GetFieldData()
     vec = lambda name: [float(x) for x in fd.GetArray(name).GetTuple3(0)]  # noqa: E731
@@ -223,11 +213,7 @@ def main(argv):
     start = time.time()
     growth = []
     for t in frames:
-        dem.UpdatePipeline(t)
-        data = fetch(dem)
-        if data.GetNumberOfPoints() == 0:
-            print("error: the DEM stage failed; see the message above", file=sys.stderr)
-            return 1
+        data = fetch_stage(dem, "DEM stage", t)
         m = crater_measures(profile)
         now = totals(data, grain_radius)
         growth.append({"time_s": t, "diameter_m": m["diameter"] if m["found"] else 0.0, "depth_m": m["depth"],

@@ -10,7 +10,7 @@ Run scripts through scripts/pvbatch, which finds the plugin and sets up headless
 import glob
 import os
 
-__all__ = ["load_plugin", "plugin_path", "fetch", "field_value"]
+__all__ = ["load_plugin", "plugin_path", "fetch", "fetch_stage", "field_value"]
 
 
 def plugin_path():
@@ -42,6 +42,19 @@ def fetch(proxy, port=0):
     from paraview import servermanager
     proxy.UpdatePipeline()
     return servermanager.Fetch(proxy, idx=port)
+
+
+def fetch_stage(proxy, stage, time=None):
+    """Updates one stage of a pipeline (at `time`, if given) and returns its data; a stage that
+    produced no particles ends the script with a message naming it (VTK's error above says why)."""
+    import sys
+    if time is not None:
+        proxy.UpdatePipeline(time)
+    data = fetch(proxy)
+    if data.GetNumberOfPoints() == 0:
+        print(f"error: the {stage} failed; see the message above", file=sys.stderr)
+        raise SystemExit(1)
+    return data
 
 
 def field_value(data, name, default=None):
