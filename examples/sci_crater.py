@@ -10,11 +10,13 @@ The SCI impactor (2 kg of copper at 2 km/s, vertical) and target (regolith of 11
 friction angle 30 degrees, no cohesion) are the defaults, and every parameter is an option.
 The gravity is one too, and it decides what a run costs: the DEM stage starts from the SPH
 state at the hand-off time, where the bed moves at tens of m/s, and must run until the crater
-has settled, about 2 sqrt(D/g); its steps grow as that speed over sqrt(g D). At Ryugu's
+has settled, about 1.5 sqrt(D/g); its steps grow as that speed over sqrt(g D). At Ryugu's
 1.5e-4 m/s^2 that is some 10^7 steps (days on two cores); the defaults therefore fire the SCI
 impactor at laboratory gravity (--gravity 9.81: a 2.2 m crater by pi-scaling, minutes), and
 `--gravity 1.5e-4` runs Ryugu itself (the estimate is printed before the DEM stage starts;
-checkpoints let it be resumed with --resume).
+checkpoints let it be resumed with --resume). At the default 6,000 grains the bed is too
+coarse for that crater: the SPH target holds a handful of grains and the settled bed shows a
+pit shallower than a grain (README, "The SCI example").
 
     scripts/pvbatch examples/sci_crater.py --help
 """
@@ -140,7 +142,6 @@ def main(argv):
     seconds = {}
     report = {"example": "sci_crater"}
 
-    # Predictions for the run's own parameters.
     rho_imp = material_value(args.impactor_material, "rho0")
     rho_matrix = material_value(args.target_material, "rho0")
     sph = simple.SPHImpact(ImpactorMaterial=args.impactor_material, ImpactorMass=args.impactor_mass,
@@ -156,6 +157,8 @@ def main(argv):
     porosity = args.porosity if args.porosity >= 0.0 else \
         1.0 - 1.0 / material_value(args.target_material, "distention", 1.0)
     rho_bulk = rho_matrix * (1.0 - porosity)
+    # The pi-scaling prediction for the run's own parameters sets the bowl, the DEM time and
+    # the ejecta limit unless they are given.
     d_pi = crater_diameter(args.impactor_mass, args.impact_speed, rho_imp, rho_bulk, args.gravity)
     d_sci = crater_diameter(args.impactor_mass, args.impact_speed, rho_imp, rho_bulk, RYUGU_GRAVITY)
     bed_radius = args.bed_radius or 1.05 * d_pi
