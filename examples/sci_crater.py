@@ -246,8 +246,9 @@ def main(argv):
     figure2 = os.path.join(args.output_dir, "figure2_crater.png")
     render_cross_section(final, figure2, color_by="Height", resolution=(2 * args.width, height),
                          label=f"{args.packing}, r = {grain_radius:.3g} m, N = {dem_data.GetNumberOfPoints()}, "
-                               f"g = {args.gravity:g} m/s^2, t = {frames[-1]:.3g} s",
-                         measures=measures)
+                               f"g = {args.gravity:g} m/s^2, t = {frames[-1]:.3g} s "
+                               f"(ejecta above {0.5 * bed_radius:.3g} m not drawn)",
+                         measures=measures, max_height=0.5 * bed_radius)
     table = fetch(profile)
     radius = vtk_to_numpy(table.GetRowData().GetArray("Radius")) if table.IsA("vtkTable") else []
     heights = vtk_to_numpy(table.GetRowData().GetArray("Height")) if table.IsA("vtkTable") else []

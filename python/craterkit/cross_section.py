@@ -56,12 +56,13 @@ out.SetLines(lines)
 
 def render_cross_section(source, filename, half_width=None, color_by="Height",
                          surface_height=0.0, resolution=(1600, 900), label=None,
-                         color_range=None, measures=None):
+                         color_range=None, measures=None, max_height=None):
     """Renders the cross-section of a particle source to a PNG and returns the slab proxy.
 
     source: a CraterKit particle proxy (points with a Radius array).
     half_width: half thickness of the slab in m (default: twice the largest radius).
     color_by: point array to colour by; "Height" is z.
+    max_height: leave out particles above this z (ejecta high in flight), so the view frames the crater.
     """
     simple = load_plugin()
     from paraview import servermanager
@@ -77,6 +78,11 @@ def render_cross_section(source, filename, half_width=None, color_by="Height",
     slab = simple.Threshold(Input=offset, Scalars=["POINTS", "SlabDistance"])
     slab.LowerThreshold = 0.0
     slab.UpperThreshold = half_width
+    if max_height is not None:
+        slab = simple.Threshold(Input=slab, Scalars=["POINTS", "Height"])
+        slab.LowerThreshold = bounds[4] - 1.0
+        slab.UpperThreshold = max_height
+        bounds = bounds[:5] + (min(bounds[5], max_height),)
 
     view = simple.CreateView("RenderView")
     view.ViewSize = list(resolution)
