@@ -15,12 +15,10 @@ import os
 import sys
 import time
 
-import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from craterkit import fetch, fetch_stage, field_value, load_plugin
-from craterkit.cross_section import render_cross_section
-from craterkit.figures import side_by_side, speed_slab
+from craterkit.figures import handoff_figure
 from craterkit.report import write_report
 
 
@@ -81,17 +79,8 @@ def main(argv):
     prof = fetch(profile)
 
     print("[4/4] pictures and report", flush=True)
-    vmax = float(np.percentile(np.linalg.norm(vtk_to_numpy(sph_data.GetPointData().GetArray("Velocity")), axis=1), 99))
-    height = int(args.width * 9 / 16)
-    left = os.path.join(args.output_dir, "sph.png")
-    right = os.path.join(args.output_dir, "dem.png")
-    at_handoff = simple.ForceTime(Input=sph, ForcedTime=args.handoff_time, IgnorePipelineTime=1)
-    render_cross_section(speed_slab(simple, at_handoff, "SmoothingLength/5"), left, color_by="Speed",
-                         color_range=(0.0, vmax), resolution=(args.width, height),
-                         label=f"SPH at {args.handoff_time:.1e} s")
-    render_cross_section(speed_slab(simple, hand, None), right, color_by="Speed", color_range=(0.0, vmax),
-                         resolution=(args.width, height), label="DEM after the hand-off")
-    combined = side_by_side([left, right], os.path.join(args.output_dir, "handoff.png"), args.width, height)
+    combined = handoff_figure(simple, sph, hand, args.handoff_time,
+                              os.path.join(args.output_dir, "handoff.png"), args.width)
 
     report = {
         "example": "hybrid_handoff",

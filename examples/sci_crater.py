@@ -32,7 +32,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from craterkit import fetch, fetch_stage, field_value, load_plugin
 from craterkit.cross_section import crater_measures, render_cross_section
-from craterkit.figures import profile_plot, side_by_side, speed_slab
+from craterkit.figures import handoff_figure, profile_plot
 from craterkit.report import write_report
 from craterkit.scaling import crater_diameter, formation_time
 
@@ -231,17 +231,8 @@ def main(argv):
 
     say("[5/5] pictures and report")
     height = int(args.width * 9 / 16)
-    s = speeds(sph_data)
-    vmax = float(np.percentile(s, 99)) if s.size else 1.0
-    left = os.path.join(args.output_dir, "sph.png")
-    right = os.path.join(args.output_dir, "dem.png")
-    at_handoff = simple.ForceTime(Input=sph, ForcedTime=args.handoff_time, IgnorePipelineTime=1)
-    render_cross_section(speed_slab(simple, at_handoff, "SmoothingLength/5"), left, color_by="Speed",
-                         color_range=(0.0, vmax), resolution=(args.width, height),
-                         label=f"SPH at {args.handoff_time:.1e} s")
-    render_cross_section(speed_slab(simple, hand), right, color_by="Speed", color_range=(0.0, vmax),
-                         resolution=(args.width, height), label="DEM after the hand-off")
-    figure1 = side_by_side([left, right], os.path.join(args.output_dir, "figure1_handoff.png"), args.width, height)
+    figure1 = handoff_figure(simple, sph, hand, args.handoff_time,
+                             os.path.join(args.output_dir, "figure1_handoff.png"), args.width)
     final = simple.ForceTime(Input=dem, ForcedTime=frames[-1], IgnorePipelineTime=1)
     figure2 = os.path.join(args.output_dir, "figure2_crater.png")
     render_cross_section(final, figure2, color_by="Height", resolution=(2 * args.width, height),

@@ -27,6 +27,28 @@ def side_by_side(paths, filename, width, height):
     return filename
 
 
+def handoff_figure(simple, sph, hand, handoff_time, filename, width=900):
+    """Figure 1 of the hybrid seed: the SPH velocity field at the hand-off time and the DEM
+    state after the hand-off, side by side, coloured by speed on one scale (0 to the SPH's
+    99th percentile). sph: the SPHImpact proxy; hand: the ImpactHandoff proxy."""
+    import numpy as np
+    from paraview import servermanager
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from .cross_section import render_cross_section
+    at_handoff = simple.ForceTime(Input=sph, ForcedTime=handoff_time, IgnorePipelineTime=1)
+    data = servermanager.Fetch(at_handoff)
+    speed = np.linalg.norm(vtk_to_numpy(data.GetPointData().GetArray("Velocity")), axis=1)
+    vmax = float(np.percentile(speed, 99)) if speed.size else 1.0
+    height = int(width * 9 / 16)
+    folder = os.path.dirname(filename)
+    left, right = os.path.join(folder, "sph.png"), os.path.join(folder, "dem.png")
+    render_cross_section(speed_slab(simple, at_handoff, "SmoothingLength/5"), left, color_by="Speed",
+                         color_range=(0.0, vmax), resolution=(width, height), label=f"SPH at {handoff_time:.1e} s")
+    render_cross_section(speed_slab(simple, hand), right, color_by="Speed", color_range=(0.0, vmax),
+                         resolution=(width, height), label="DEM after the hand-off")
+    return side_by_side([left, right], filename, width, height)
+
+
 def profile_plot(radius, height, filename, measures=None, reference=None, title=None):
     """The azimuthally averaged surface height against distance from the impact axis, mirrored
     to both sides, with the measured diameter, rim and depth and an optional reference crater
