@@ -82,6 +82,9 @@ void vtkCraterKitSPHImpact::BuildRun()
   p.xsph = this->XSPH;
   p.courant = this->CourantNumber;
   p.minTimeStep = this->MinTimeStep;
+  p.lateStageTime = this->LateStageTime;
+  p.domainRadius = this->DomainRadius;
+  p.lateStageSoundSpeed = this->LateStageSoundSpeed;
   this->Spacing = problem.spacing;
   this->ContainerParticles = problem.containerParticles;
   this->Run = std::make_unique<SphRun>(
@@ -211,6 +214,9 @@ void vtkCraterKitSPHImpact::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "XSPH: " << this->XSPH << "\n";
   os << indent << "CourantNumber: " << this->CourantNumber << "\n";
   os << indent << "MinTimeStep: " << this->MinTimeStep << "\n";
+  os << indent << "LateStageTime: " << this->LateStageTime << "\n";
+  os << indent << "DomainRadius: " << this->DomainRadius << "\n";
+  os << indent << "LateStageSoundSpeed: " << this->LateStageSoundSpeed << "\n";
   os << indent << "CheckpointFile: " << this->CheckpointFile << "\n";
   os << indent << "CheckpointInterval: " << this->CheckpointInterval << "\n";
   os << indent << "ResumeFromCheckpoint: " << this->ResumeFromCheckpoint << "\n";

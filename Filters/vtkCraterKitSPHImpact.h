@@ -86,6 +86,12 @@ public:
   vtkGetMacro(CourantNumber, double);
   vtkSetMacro(MinTimeStep, double);
   vtkGetMacro(MinTimeStep, double);
+  vtkSetMacro(DomainRadius, double);
+  vtkGetMacro(DomainRadius, double);
+  vtkSetMacro(LateStageTime, double);
+  vtkGetMacro(LateStageTime, double);
+  vtkSetMacro(LateStageSoundSpeed, double);
+  vtkGetMacro(LateStageSoundSpeed, double);
   vtkSetStdStringFromCharMacro(CheckpointFile);
   vtkGetCharFromStdStringMacro(CheckpointFile);
   vtkSetMacro(CheckpointInterval, int);
@@ -130,6 +136,9 @@ private:
   double XSPH = 0.0;
   double CourantNumber = 0.3;
   double MinTimeStep = 1e-12;
+  double LateStageTime = -1.0;
+  double DomainRadius = 0.0;
+  double LateStageSoundSpeed = 100.0;
   std::string CheckpointFile;
   int CheckpointInterval = 0;
   int ResumeFromCheckpoint = 0;

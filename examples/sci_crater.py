@@ -64,6 +64,10 @@ def parse_args(argv):
     g.add_argument("--sph-resolution", type=int, default=4, help="SPH particles across the impactor")
     g.add_argument("--sph-target-radius", type=float, default=0.3, help="SPH target hemisphere, m")
     g.add_argument("--handoff-time", type=float, default=1e-3, help="s after contact")
+    g.add_argument("--late-stage-time", type=float, default=-1.0,
+                   help="s; from then on the SPH solids use the late-stage scheme (a soft linear equation "
+                        "of state, long steps: SPHImpact's LateStageTime); negative: never")
+    g.add_argument("--late-stage-sound-speed", type=float, default=50.0, help="m/s, of the late-stage scheme")
     g.add_argument("--ejecta-speed-limit", type=float, default=0.0,
                    help="m/s; faster SPH material leaves as ejecta (dropped). 0: 1 m/s at Ryugu, "
                         "Froude-scaled to the run's gravity and predicted crater")
@@ -149,6 +153,7 @@ def main(argv):
                            TargetPorosity=args.porosity, FrictionAngle=args.friction_angle, Cohesion=0.0,
                            SurfaceGravity=args.gravity, ParticlesAcrossImpactor=args.sph_resolution,
                            TargetRadius=args.sph_target_radius, TargetContainer=1,
+                           LateStageTime=args.late_stage_time, LateStageSoundSpeed=args.late_stage_sound_speed,
                            EndTime=args.handoff_time, OutputInterval=args.handoff_time)
     say(f"[1/5] SPH impact to {args.handoff_time:.2e} s")
     start = time.time()

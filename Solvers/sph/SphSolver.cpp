@@ -1,6 +1,5 @@
 #include "sph/SphSolver.h"
 
-#include "common/CellList.h"
 #include "common/Error.h"
 #include "common/Random.h"
 #include "sph/Kernels.h"
@@ -47,6 +46,8 @@ void SphParams::validate() const {
     throw InputError("SPH: the error tolerance must be in (0, 1]");
   if (!(minTimeStep >= 0.0))
     throw InputError("SPH: the time-step floor must not be negative");
+  if (!(maxSmoothingGrowth == 0.0 || (maxSmoothingGrowth >= 1.0 && std::isfinite(maxSmoothingGrowth))))
+    throw InputError("SPH: the smoothing-length growth cap must be 0 (none) or at least 1");
   for (int k = 0; k < 3; ++k) {
     if (!std::isfinite(gravity[k]) || !std::isfinite(pointMassAt[k]))
       throw InputError("SPH: gravity must be finite");
@@ -55,6 +56,12 @@ void SphParams::validate() const {
   }
   if (!(pointMassGM >= 0.0) || !std::isfinite(pointMassGM))
     throw InputError("SPH: the point mass GM must be finite and not negative");
+  if (!(domainRadius >= 0.0) || !std::isfinite(domainRadius))
+    throw InputError("SPH: the domain radius must be finite and not negative (0: no limit)");
+  if (!std::isfinite(lateStageTime))
+    throw InputError("SPH: the late-stage time must be finite (negative: no late stage)");
+  if (lateStageTime >= 0.0 && !(lateStageSoundSpeed > 0.0 && std::isfinite(lateStageSoundSpeed)))
+    throw InputError("SPH: the late-stage sound speed must be positive");
 }
 
 namespace {
@@ -121,6 +128,16 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
       throw InputError("SPH: material '" + mat.name + "' has strength but no shear modulus");
     if (!(mat.crushPs > mat.crushPe) || !(mat.distention >= 1.0))
       throw InputError("SPH: material '" + mat.name + "' has a bad porosity model");
+    double rho0 = 0.0;
+    if (mat.eos.model == EquationOfState::Model::Tillotson)
+      rho0 = mat.eos.tillotson.rho0;
+    else if (mat.eos.model == EquationOfState::Model::Murnaghan)
+      rho0 = mat.eos.murnaghanRho0;
+    else if (mat.eos.model == EquationOfState::Model::StiffenedGas)
+      rho0 = mat.eos.stiffRho0;
+    hCapFactor_.push_back(rho0 > 0.0 && par_.maxSmoothingGrowth > 0.0
+                            ? par_.maxSmoothingGrowth * par_.kappa * std::cbrt(mat.distention / rho0)
+                            : 0.0);
   }
   const std::size_t n = s_.size();
   if (n == 0)
@@ -153,7 +170,7 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
         throw InputError(which + " has a non-finite stress");
   }
   for (std::size_t i = 0; i < n; ++i)
-    s_.h[i] = par_.kappa * std::cbrt(s_.mass[i] / s_.rho[i]);
+    s_.h[i] = smoothingLength(s_, i);
   assignFlaws();
   buildNeighbours(s_, 0.0);
   settle(s_, p_, c_);
@@ -225,6 +242,11 @@ bool SphSolver::neighboursValid(const SphState& s, double extra) const {
   double d2max = 0.0;
   bool hOk = true;
   for (std::size_t i = 0; i < s.size(); ++i) {
+    if (nb_.out[i]) {
+      if (!outside(s, i))
+        return false; // back in the domain: it needs neighbours
+      continue;
+    }
     double d2 = 0.0;
     for (int k = 0; k < 3; ++k) {
       double d = s.x[3 * i + k] - nb_.x[3 * i + k];
@@ -242,17 +264,28 @@ bool SphSolver::neighboursValid(const SphState& s, double extra) const {
 
 void SphSolver::buildNeighbours(const SphState& s, double margin) {
   const std::size_t n = s.size();
-  const double hmax = *std::max_element(s.h.begin(), s.h.end());
+  nb_.out.assign(n, 0);
+  double hmax = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    nb_.out[i] = outside(s, i);
+    if (!nb_.out[i])
+      hmax = std::max(hmax, s.h[i]);
+  }
   const double grow = 1.05; // h may grow this much before the list misses a pair
   const double reach = grow * hmax + margin;
   nb_.x = s.x;
   nb_.h = s.h;
   nb_.margin = margin;
   nb_.grow = grow;
-  std::vector<double> pos(s.x);
-  std::vector<std::uint32_t> id(n);
+  std::vector<double> pos;
+  std::vector<std::uint32_t> id;
+  pos.reserve(3 * n);
+  id.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
-    id[i] = static_cast<std::uint32_t>(i * 32 + kNoShift);
+    if (!nb_.out[i]) {
+      pos.insert(pos.end(), &s.x[3 * i], &s.x[3 * i] + 3);
+      id.push_back(static_cast<std::uint32_t>(i * 32 + kNoShift));
+    }
   for (int sx = -1; sx <= 1; ++sx)
     for (int sy = -1; sy <= 1; ++sy)
       for (int sz = -1; sz <= 1; ++sz) {
@@ -264,6 +297,8 @@ void SphSolver::buildNeighbours(const SphState& s, double margin) {
           continue;
         const std::uint32_t code = static_cast<std::uint32_t>((sx + 1) + 3 * (sy + 1) + 9 * (sz + 1));
         for (std::size_t i = 0; i < n; ++i) {
+          if (nb_.out[i])
+            continue;
           double y[3];
           bool near = true;
           for (int k = 0; k < 3 && near; ++k) {
@@ -276,39 +311,101 @@ void SphSolver::buildNeighbours(const SphState& s, double margin) {
           id.push_back(static_cast<std::uint32_t>(i * 32 + code));
         }
       }
-  CellList cells;
-  cells.build(pos.data(), id.size(), reach);
-  std::vector<std::uint32_t> count(n + 1, 0);
-  auto visit = [&](std::size_t a, auto&& take) {
-    const double* xa = &s.x[3 * a];
-    cells.forEachCandidate(xa, reach, [&](std::size_t q) {
-      if (q == a)
-        return;
-      const std::size_t b = id[q] / 32;
-      const double cut = grow * std::max(s.h[a], s.h[b]) + margin;
-      const double* xb = &pos[3 * q];
-      const double r2 = (xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
-                        (xa[2] - xb[2]) * (xa[2] - xb[2]);
-      if (r2 < cut * cut)
-        take(id[q]);
-    });
+  // A sparse grid: cells of half the reach, keyed (z, y, x) in 64 bits and sorted, so memory
+  // and cost do not depend on how far ejecta have flown (a dense grid over a spray kilometres
+  // wide would have to coarsen its cells for everyone). Candidate positions are copied in cell
+  // order, so the scan reads memory sequentially.
+  const std::size_t m = id.size();
+  const double cs = 0.5 * reach;
+  double lo[3] = {INFINITY, INFINITY, INFINITY};
+  for (std::size_t q = 0; q < m; ++q)
+    for (int k = 0; k < 3; ++k)
+      lo[k] = std::min(lo[k], pos[3 * q + k]);
+  constexpr std::int64_t kAxis = (std::int64_t(1) << 21) - 1;
+  auto coord = [&](double v, int k) {
+    return static_cast<std::int64_t>(std::clamp(std::floor((v - lo[k]) / cs), 0.0, static_cast<double>(kAxis)));
   };
-#pragma omp parallel for schedule(dynamic, 512) if (n >= 1024)
-  for (std::size_t a = 0; a < n; ++a) {
-    std::uint32_t c = 0;
-    visit(a, [&](std::uint32_t) { ++c; });
-    count[a + 1] = c;
+  auto key = [](std::int64_t cx, std::int64_t cy, std::int64_t cz) { return (cz << 42) | (cy << 21) | cx; };
+  std::vector<std::pair<std::int64_t, std::uint32_t>> order(m);
+  for (std::size_t q = 0; q < m; ++q)
+    order[q] = {key(coord(pos[3 * q], 0), coord(pos[3 * q + 1], 1), coord(pos[3 * q + 2], 2)), static_cast<std::uint32_t>(q)};
+  std::sort(order.begin(), order.end());
+  std::vector<double> spos(3 * m);
+  std::vector<std::uint32_t> sid(m);
+  std::vector<std::int64_t> cellKey;      // distinct cells, ascending
+  std::vector<std::uint32_t> cellStart;   // their first entry in the sorted arrays, plus the end
+  for (std::size_t r = 0; r < m; ++r) {
+    const std::uint32_t q = order[r].second;
+    for (int k = 0; k < 3; ++k)
+      spos[3 * r + k] = pos[3 * q + k];
+    sid[r] = id[q];
+    if (r == 0 || order[r].first != order[r - 1].first) {
+      cellKey.push_back(order[r].first);
+      cellStart.push_back(static_cast<std::uint32_t>(r));
+    }
   }
+  cellStart.push_back(static_cast<std::uint32_t>(m));
+  auto visit = [&](std::size_t a, std::vector<std::uint32_t>& out) {
+    const double* xa = &s.x[3 * a];
+    std::int64_t c0[3], c1[3];
+    for (int k = 0; k < 3; ++k) {
+      c0[k] = coord(xa[k] - reach, k);
+      c1[k] = coord(xa[k] + reach, k);
+    }
+    for (std::int64_t cz = c0[2]; cz <= c1[2]; ++cz)
+      for (std::int64_t cy = c0[1]; cy <= c1[1]; ++cy) {
+        // The row's cells are contiguous in key order: one search for its first.
+        auto it = std::lower_bound(cellKey.begin(), cellKey.end(), key(c0[0], cy, cz));
+        const std::int64_t last = key(c1[0], cy, cz);
+        auto stop = it;
+        while (stop != cellKey.end() && *stop <= last)
+          ++stop;
+        const std::uint32_t begin = cellStart[static_cast<std::size_t>(it - cellKey.begin())];
+        const std::uint32_t end = cellStart[static_cast<std::size_t>(stop - cellKey.begin())];
+        for (std::uint32_t r = begin; r < end; ++r) {
+          const std::uint32_t e = sid[r];
+          const std::size_t b = e / 32;
+          if (b == a && e % 32 == kNoShift)
+            continue;
+          const double cut = grow * std::max(s.h[a], s.h[b]) + margin;
+          const double* xb = &spos[3 * r];
+          const double r2 = (xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
+                            (xa[2] - xb[2]) * (xa[2] - xb[2]);
+          if (r2 < cut * cut)
+            out.push_back(e);
+        }
+      }
+  };
+  // One pass: each thread lists a contiguous block of particles into its own buffer (in the
+  // grid's order, the same for any thread count), then the blocks are copied into place.
   nb_.start.assign(n + 1, 0);
-  for (std::size_t a = 0; a < n; ++a)
-    nb_.start[a + 1] = nb_.start[a] + count[a + 1];
-  if (nb_.start[n] > 0xF0000000u)
+  const int threads = n >= 1024 ? omp_get_max_threads() : 1;
+  std::vector<std::vector<std::uint32_t>> buffers(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()), nt = static_cast<std::size_t>(omp_get_num_threads());
+    const std::size_t a0 = n * t / nt, a1 = n * (t + 1) / nt;
+    std::vector<std::uint32_t>& out = buffers[t];
+    out.clear();
+    for (std::size_t a = a0; a < a1; ++a) {
+      const std::size_t before = out.size();
+      if (!nb_.out[a])
+        visit(a, out);
+      nb_.start[a + 1] = static_cast<std::uint32_t>(out.size() - before);
+    }
+  }
+  std::size_t total = 0;
+  for (const auto& b : buffers)
+    total += b.size();
+  if (total > 0xF0000000u)
     throw std::runtime_error("SPH: too many neighbour pairs (the smoothing lengths have grown too large)");
-  nb_.entry.resize(nb_.start[n]);
-#pragma omp parallel for schedule(dynamic, 512) if (n >= 1024)
-  for (std::size_t a = 0; a < n; ++a) {
-    std::uint32_t* out = &nb_.entry[nb_.start[a]];
-    visit(a, [&](std::uint32_t e) { *out++ = e; }); // the cell list's order: the same for any thread count
+  for (std::size_t a = 0; a < n; ++a)
+    nb_.start[a + 1] += nb_.start[a];
+  nb_.entry.resize(total);
+  std::size_t at = 0;
+  for (const auto& b : buffers) {
+    std::copy(b.begin(), b.end(), nb_.entry.begin() + static_cast<std::ptrdiff_t>(at));
+    at += b.size();
   }
 }
 
@@ -324,7 +421,7 @@ void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>&
     }
   }
   for (std::size_t i = 0; i < n; ++i)
-    s.h[i] = par_.kappa * std::cbrt(s.mass[i] / s.rho[i]);
+    s.h[i] = smoothingLength(s, i);
   if (par_.summationDensity)
     densityBySummation(s);
   eosAndYield(s, p, c);
@@ -345,7 +442,7 @@ void SphSolver::eosAndYield(SphState& s, std::vector<double>& p, std::vector<dou
     double& a = s.alpha[i];
     auto bulkPressure = [&](double al) { return mat.eos.pressure(al * rho, u) / al; };
     double P = bulkPressure(a);
-    if (a > 1.0 && a > r.crushAlpha(P)) {
+    if (!late_ && a > 1.0 && a > r.crushAlpha(P)) {
       // Compaction: α is the largest value in [1, α] on or below the crush curve. f(α) =
       // α − α_crush(P(α)) is ≤ 0 at α = 1 and > 0 here, so bisection finds the crossing.
       double lo = 1.0, hi = a;
@@ -427,7 +524,21 @@ void SphSolver::densityBySummation(SphState& s) const {
   else
     summation<CubicSpline>(s);
   for (std::size_t i = 0; i < s.size(); ++i)
-    s.h[i] = par_.kappa * std::cbrt(s.mass[i] / s.rho[i]);
+    s.h[i] = smoothingLength(s, i);
+}
+
+bool SphSolver::outside(const SphState& s, std::size_t i) const {
+  if (par_.domainRadius <= 0.0)
+    return false;
+  const double* x = &s.x[3 * i];
+  const double dx = x[0] - par_.domainCentre[0], dy = x[1] - par_.domainCentre[1], dz = x[2] - par_.domainCentre[2];
+  return dx * dx + dy * dy + dz * dz > par_.domainRadius * par_.domainRadius;
+}
+
+double SphSolver::smoothingLength(const SphState& s, std::size_t i) const {
+  const double m3 = std::cbrt(s.mass[i]), h = par_.kappa * m3 / std::cbrt(s.rho[i]);
+  const double f = hCapFactor_[static_cast<std::size_t>(s.material[i])];
+  return f > 0.0 ? std::min(h, f * m3) : h;
 }
 
 namespace {
@@ -664,13 +775,72 @@ double SphSolver::limitStep(const SphState& s, const Rates& r, double maxSignal)
   return dt;
 }
 
+void SphSolver::restore(double time, std::size_t steps, double nextStep) {
+  time_ = time, steps_ = steps;
+  if (!late_ && par_.lateStageTime >= 0.0 && time_ >= par_.lateStageTime)
+    enterLateStage(false);
+  if (nextStep > 0.0)
+    stableStep_ = nextStep;
+}
+
+void SphSolver::enterLateStage(bool scaleStress) {
+  const double c = par_.lateStageSoundSpeed;
+  std::vector<double> scale(par_.materials.size(), 1.0);
+  for (std::size_t m = 0; m < par_.materials.size(); ++m) {
+    Material& mat = par_.materials[m];
+    EquationOfState& eos = mat.eos;
+    double rho0;
+    if (eos.model == EquationOfState::Model::Tillotson)
+      rho0 = eos.tillotson.rho0;
+    else if (eos.model == EquationOfState::Model::Murnaghan)
+      rho0 = eos.murnaghanRho0;
+    else
+      continue; // gases keep their law
+    const double Kold = mat.bulkModulus > 0.0 ? mat.bulkModulus
+                        : eos.model == EquationOfState::Model::Tillotson ? eos.tillotson.A : eos.murnaghanK0;
+    const double K = rho0 * c * c;
+    eos.model = EquationOfState::Model::Murnaghan;
+    eos.murnaghanRho0 = rho0;
+    eos.murnaghanK0 = K;
+    eos.murnaghanN = 1.0;
+    eos.soundSpeedFloor = 0.01 * c;
+    if (mat.shearModulus > 0.0) {
+      const double G = mat.shearModulus, nu = (3.0 * Kold - 2.0 * G) / (2.0 * (3.0 * Kold + G));
+      const double Gnew = 3.0 * K * (1.0 - 2.0 * nu) / (2.0 * (1.0 + nu));
+      scale[m] = Gnew / G;
+      mat.shearModulus = Gnew;
+    }
+    mat.bulkModulus = K;
+  }
+  if (scaleStress)
+    for (std::size_t i = 0; i < s_.size(); ++i) {
+      const double f = scale[static_cast<std::size_t>(s_.material[i])];
+      for (int k = 0; k < 6; ++k)
+        s_.S[6 * i + k] *= f;
+    }
+  late_ = true;
+  settle(s_, p_, c_);
+  const double signal = computeRates(s_, p_, c_, k1_);
+  stableStep_ = limitStep(s_, k1_, signal);
+}
+
 double SphSolver::step(double dt) {
   if (dt <= 0.0)
     dt = stableStep_;
+  if (!late_ && par_.lateStageTime >= 0.0 && time_ + dt > par_.lateStageTime) {
+    if (par_.lateStageTime - time_ <= 1e-9 * dt) {
+      enterLateStage(true);
+      dt = std::min(dt, stableStep_);
+    } else {
+      dt = par_.lateStageTime - time_; // the switch happens at its time exactly
+    }
+  }
   const std::size_t n = s_.size();
   const bool xs = par_.xsph > 0.0;
-  double vmax = 0.0;
+  double vmax = 0.0; // of the particles in the domain (the others have no neighbours)
   for (std::size_t i = 0; i < n; ++i) {
+    if (par_.domainRadius > 0.0 && outside(s_, i))
+      continue;
     double v2 = 0.0;
     for (int k = 0; k < 3; ++k) {
       const double w = s_.v[3 * i + k] + (xs ? k1_.dx[3 * i + k] : 0.0);

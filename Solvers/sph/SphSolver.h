@@ -44,6 +44,10 @@ struct SphParams {
   double alpha = 1.0, beta = 2.0;  // artificial viscosity
   double xsph = 0.0;               // XSPH ε (0: off)
   double kappa = 2.5;              // h = κ (m/ρ)^{1/3}
+  // h grows at most to this multiple of its value at the material's reference bulk density
+  // (ρ0/α0; solids only, 0: no cap). Without it a spray of expanding ejecta gets ever larger
+  // h, which sizes the neighbour cells for everyone and forces a new list every step.
+  double maxSmoothingGrowth = 2.0;
   double courant = 0.3;
   double forceFactor = 0.2;        // Δt ≤ forceFactor sqrt(h / |a|)
   std::uint64_t fractureSeed = 1;  // random assignment of Grady–Kipp flaws to particles
@@ -56,6 +60,19 @@ struct SphParams {
   double pointMassAt[3] = {0, 0, 0};
   bool periodic[3] = {false, false, false};
   double boxLo[3] = {0, 0, 0}, boxHi[3] = {1, 1, 1}; // the periodic cell
+  // Late-stage scheme (after Raducan & Jutzi 2022; PHYSICS.md §2.8): at lateStageTime (negative:
+  // never) every Tillotson or Murnaghan material switches to the linear p = K (α ρ / ρ0 − 1) / α with
+  // K = ρ0 c², c = lateStageSoundSpeed, keeping its Poisson ratio (so G falls by the same factor,
+  // and each particle's deviatoric stress is scaled by it: the elastic strain is unchanged); the
+  // distention is frozen. The Courant step grows by about the ratio of the old and new sound
+  // speeds, so a run can follow the slow, gravity-driven crater growth after the shock.
+  double lateStageTime = -1.0;       // s
+  // Particles farther than domainRadius from domainCentre (0: no limit) have left the SPH
+  // domain: they get no neighbours and fly ballistically (under gravity) until they return,
+  // so fast ejecta neither widen the neighbour lists nor force a new list every step.
+  double domainRadius = 0.0;         // m
+  double domainCentre[3] = {0, 0, 0};
+  double lateStageSoundSpeed = 100.0; // m/s
   void validate() const;
 };
 
@@ -68,11 +85,9 @@ public:
   void advanceTo(double t);
   double time() const { return time_; }
   // Sets the clock of a state restored from a snapshot or checkpoint.
-  void restore(double time, std::size_t steps, double nextStep) {
-    time_ = time, steps_ = steps;
-    if (nextStep > 0.0)
-      stableStep_ = nextStep;
-  }
+  // A state at or after the late-stage time already has the late stage's stress.
+  void restore(double time, std::size_t steps, double nextStep);
+  bool lateStage() const { return late_; }
   std::size_t steps() const { return steps_; }
   const SphState& state() const { return s_; }
   const SphParams& params() const { return par_; }
@@ -95,9 +110,13 @@ private:
     std::vector<std::uint32_t> start; // CSR offsets, size n+1
     std::vector<std::uint32_t> entry; // neighbour index * 32 + periodic image code
     std::vector<double> x, h;         // positions and smoothing lengths at the build
+    std::vector<char> out;            // outside the domain at the build (no neighbours)
     double margin = 0.0, grow = 1.0;
   };
   void assignFlaws();
+  // Switches the materials to the late-stage equations of state (scaling each particle's
+  // deviatoric stress when `scaleStress`), then recomputes the current state's rates.
+  void enterLateStage(bool scaleStress);
   void integrateDamage(SphState& s, const SphState& from, double dt, const Rates& a, const Rates* b) const;
   void buildNeighbours(const SphState& s, double margin);
   bool neighboursValid(const SphState& s, double extra) const;
@@ -106,6 +125,8 @@ private:
   void settle(SphState& s, std::vector<double>& p, std::vector<double>& c) const;
   void eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c) const;
   void densityBySummation(SphState& s) const;
+  double smoothingLength(const SphState& s, std::size_t i) const; // κ (m/ρ)^{1/3}, capped
+  bool outside(const SphState& s, std::size_t i) const;            // beyond domainRadius
   // Rates of s; returns the largest signal speed over h/2.
   double computeRates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c,
                       Rates& r) const;
@@ -120,6 +141,7 @@ private:
   Neighbours nb_;
   std::vector<std::uint32_t> flawStart_; // Grady–Kipp activation strains per particle (CSR, ascending)
   std::vector<double> flawEps_;
+  std::vector<double> hCapFactor_; // per material: κ (α0/ρ0)^{1/3} × the growth cap (0: none)
   Rates k1_;                   // rates of the current state
   SphState mid_;               // the predictor stage (members: reused, not reallocated, each step)
   Rates k2_;
@@ -127,6 +149,7 @@ private:
   std::vector<double> p_, c_;  // pressure and sound speed of the current state
   double time_ = 0.0, stableStep_ = 0.0;
   std::size_t steps_ = 0;
+  bool late_ = false;
 };
 
 } // namespace craterkit

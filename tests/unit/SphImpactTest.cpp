@@ -225,3 +225,45 @@ TEST(SphImpact, BadSetUpsGetClearErrorsBeforeAnyWork) {
     EXPECT_NE(std::string(e.what()).find("near particle"), std::string::npos) << e.what();
   }
 }
+
+// The SPH domain: two pairs of overlapping gas particles, one pair at the origin and one 10 m
+// away, with DomainRadius 5 m. The pair inside pushes apart; the pair outside has no neighbours
+// and only falls: its velocities are exactly g t, its positions the parabola. Bringing the far
+// pair inside the domain makes it push apart too (it was not switched off by anything else).
+TEST(SphImpact, ParticlesOutsideTheDomainFlyBallistically) {
+  EquationOfState gas;
+  gas.model = EquationOfState::Model::IdealGas;
+  SphParams par;
+  par.materials = {fluidMaterial(gas)};
+  par.gravity[2] = -9.81;
+  par.domainRadius = 5.0;
+  auto run = [&](double farAt, double& nearGap, double& farGap, double farV[3], double farZ[2]) {
+    SphState s;
+    const double rest[3] = {0, 0, 0};
+    const double a[3] = {-0.05, 0, 0}, b[3] = {0.05, 0, 0};
+    const double c[3] = {farAt - 0.05, 0, 0}, d[3] = {farAt + 0.05, 0, 0};
+    s.add(a, rest, 1.0, 1.0, 1e3, 0);
+    s.add(b, rest, 1.0, 1.0, 1e3, 0);
+    s.add(c, rest, 1.0, 1.0, 1e3, 0);
+    s.add(d, rest, 1.0, 1.0, 1e3, 0);
+    SphSolver solver(s, par);
+    solver.advanceTo(0.01);
+    const SphState& st = solver.state();
+    nearGap = st.x[3] - st.x[0];
+    farGap = st.x[9] - st.x[6];
+    for (int k = 0; k < 3; ++k)
+      farV[k] = st.v[6 + k];
+    farZ[0] = st.x[8];
+    farZ[1] = st.x[11];
+  };
+  double nearGap, farGap, v[3], z[2];
+  run(10.0, nearGap, farGap, v, z);
+  EXPECT_GT(nearGap, 0.1 * (1.0 + 1e-3)); // the pair in the domain pushed apart
+  EXPECT_NEAR(farGap, 0.1, 1e-12);        // the pair outside did not
+  EXPECT_EQ(v[0], 0.0);
+  EXPECT_NEAR(v[2], -9.81 * 0.01, 1e-12);
+  EXPECT_NEAR(z[0], -0.5 * 9.81 * 1e-4, 1e-12);
+  EXPECT_NEAR(z[1], -0.5 * 9.81 * 1e-4, 1e-12);
+  run(3.0, nearGap, farGap, v, z);
+  EXPECT_NEAR(farGap, nearGap, 1e-9); // inside, the same pair behaves as the one at the origin
+}

@@ -174,15 +174,28 @@ TEST(SphSolid, JaumannRateRotatesStressWithTheBody) {
 // plane; the floor is three rows of rigid boundary particles. A soft Murnaghan equation of
 // state (sound speed 16 m/s, ten times the collapse speed) keeps the time step long, as
 // granular SPH does.
-TEST(SphSolid, GranularColumnCollapseStandsAtTheFrictionAngle) {
+namespace {
+
+// The granular column collapse: a plane column H = 0.2 m high and 0.4 m wide (periodic in y,
+// four particles deep) of cohesionless soil with φ = 30° on a rigid rough floor, run for
+// 6 sqrt(H/g). Returns the flank angle of the deposit (least squares between 25 % and 75 %
+// of its height) and whether it came to rest.
+struct Collapse {
+  double angle = 0.0, kinetic = 0.0, restScale = 0.0;
+  std::size_t steps = 0;
+};
+
+Collapse collapseColumn(double bulkModulus, double lateStageTime, double lateSoundSpeed,
+                        double* stepRatio = nullptr, double* stressRatio = nullptr) {
   const double H = 0.2, W = 0.4, dx = H / 12.0, rho0 = 1500.0, g = 9.81;
   Material soil;
   soil.name = "soil";
   soil.eos.model = EquationOfState::Model::Murnaghan;
   soil.eos.murnaghanRho0 = rho0;
-  soil.eos.murnaghanK0 = 4e5;
+  soil.eos.murnaghanK0 = bulkModulus;
   soil.eos.murnaghanN = 7.0;
-  soil.shearModulus = 0.35 * soil.eos.murnaghanK0;
+  soil.bulkModulus = bulkModulus;
+  soil.shearModulus = 0.35 * bulkModulus;
   soil.strength = Material::Strength::DruckerPrager;
   soil.frictionAngle = 30.0;
   soil.cohesion = 0.0;
@@ -194,6 +207,8 @@ TEST(SphSolid, GranularColumnCollapseStandsAtTheFrictionAngle) {
   par.gravity[2] = -g;
   par.alpha = 0.5;
   par.beta = 0.0;
+  par.lateStageTime = lateStageTime;
+  par.lateStageSoundSpeed = lateSoundSpeed;
   const int ny = 4;
   par.periodic[1] = true;
   par.boxLo[1] = 0.0;
@@ -215,6 +230,27 @@ TEST(SphSolid, GranularColumnCollapseStandsAtTheFrictionAngle) {
         s.add(x, rest, m, rho0, 0.0, 1);
       }
   SphSolver solver(s, par);
+  if (lateStageTime >= 0.0) {
+    // Up to the switch, then one step of 1e-12 s: the switch scales the stress; the step barely moves it.
+    solver.advanceTo(lateStageTime);
+    EXPECT_FALSE(solver.lateStage());
+    const double before = solver.stableStep();
+    const std::vector<double> S = solver.state().S;
+    solver.step(1e-12);
+    EXPECT_TRUE(solver.lateStage());
+    if (stressRatio) {
+      // The largest-stress component's ratio (well away from round-off).
+      std::size_t big = 0;
+      for (std::size_t i = 0; i < S.size(); ++i)
+        if (std::abs(S[i]) > std::abs(S[big]))
+          big = i;
+      *stressRatio = solver.state().S[big] / S[big];
+    }
+    for (int k = 0; k < 30; ++k) // the step may grow by 2 per step
+      solver.step();
+    if (stepRatio)
+      *stepRatio = solver.stableStep() / before;
+  }
   const double tEnd = 6.0 * std::sqrt(H / g);
   solver.advanceTo(tEnd);
   const SphState& st = solver.state();
@@ -230,7 +266,6 @@ TEST(SphSolid, GranularColumnCollapseStandsAtTheFrictionAngle) {
     ke += 0.5 * st.mass[i] * (st.v[3 * i] * st.v[3 * i] + st.v[3 * i + 1] * st.v[3 * i + 1] + st.v[3 * i + 2] * st.v[3 * i + 2]);
   }
   const double peak = *std::max_element(top.begin(), top.end());
-  // Slope of the flank between 25 % and 75 % of the deposit's height (least squares).
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int np = 0;
   for (int b = 0; b < half; ++b)
@@ -239,18 +274,47 @@ TEST(SphSolid, GranularColumnCollapseStandsAtTheFrictionAngle) {
       sx += x, sy += top[b], sxx += x * x, sxy += x * top[b];
       ++np;
     }
-  ASSERT_GE(np, 3) << "no flank found";
-  const double slope = (np * sxy - sx * sy) / (np * sxx - sx * sx);
-  const double angle = std::atan(-slope) * 180.0 / M_PI;
+  EXPECT_GE(np, 3) << "no flank found";
+  Collapse out;
+  const double slope = np >= 3 ? (np * sxy - sx * sy) / (np * sxx - sx * sx) : 0.0;
+  out.angle = std::atan(-slope) * 180.0 / M_PI;
+  out.kinetic = ke;
+  out.restScale = rho0 * W * ny * dx * H * g * H;
+  out.steps = solver.steps();
   int runout = 0;
   for (int b = 0; b < half; ++b)
     if (top[b] > 0.0)
       runout = b + 1;
-  std::printf("column collapse (H = L0, phi = 30 deg): deposit height %.3f m, runout %.3f m, flank angle %.1f deg, "
-              "kinetic energy left %.2e J, %zu steps\n",
-              peak, runout * dx, angle, ke, solver.steps());
-  EXPECT_LT(ke, 1e-3 * rho0 * W * ny * dx * H * g * H); // at rest
-  EXPECT_NEAR(angle, 30.0, 5.0);
+  std::printf("column collapse (H = L0, phi = 30 deg, K = %.3g Pa%s): deposit height %.3f m, runout %.3f m, "
+              "flank angle %.1f deg, kinetic energy left %.2e J, %zu steps\n",
+              bulkModulus, lateStageTime >= 0.0 ? ", late stage" : "", peak, runout * dx, out.angle, ke, out.steps);
+  return out;
+}
+
+} // namespace
+
+TEST(SphSolid, GranularColumnCollapseStandsAtTheFrictionAngle) {
+  const Collapse c = collapseColumn(4e5, -1.0, 0.0);
+  EXPECT_LT(c.kinetic, 1e-3 * c.restScale); // at rest
+  EXPECT_NEAR(c.angle, 30.0, 5.0);
+}
+
+// The late-stage scheme: a column of stiff soil (K = 4 GPa, c = 1.6 km/s, which would need
+// ~10⁵ steps to collapse) switched after 0.5 ms to c = 20 m/s collapses in a few thousand
+// steps to the same friction-angle slope and comes to rest; at the switch the stable step
+// grows by about the ratio of the signal speeds, and the deviatoric stress falls by the
+// ratio of the shear moduli (same Poisson ratio: K_new / K_old).
+TEST(SphSolid, LateStageSchemeKeepsTheGranularFlowWithLongSteps) {
+  const double K = 4e9, c = 20.0, rho0 = 1500.0;
+  double stepRatio = 0.0, stressRatio = 0.0;
+  const Collapse late = collapseColumn(K, 5e-4, c, &stepRatio, &stressRatio);
+  std::printf("late stage: stable step x %.1f at the switch, stress x %.4g (expected %.4g)\n", stepRatio, stressRatio,
+              rho0 * c * c / K);
+  EXPECT_NEAR(stressRatio, rho0 * c * c / K, 1e-4 * rho0 * c * c / K);
+  EXPECT_GT(stepRatio, 0.3 * std::sqrt(K / rho0) / c); // the Courant limit follows the sound speed
+  EXPECT_LT(late.steps, 20000u);
+  EXPECT_LT(late.kinetic, 1e-3 * late.restScale);
+  EXPECT_NEAR(late.angle, 30.0, 5.0);
 }
 
 // Elastic solid: two aluminium spheres (yield raised so that they stay elastic) collide head
