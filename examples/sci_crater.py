@@ -68,6 +68,9 @@ def parse_args(argv):
                    help="s; from then on the SPH solids use the late-stage scheme (a soft linear equation "
                         "of state, long steps: SPHImpact's LateStageTime); negative: never")
     g.add_argument("--late-stage-sound-speed", type=float, default=50.0, help="m/s, of the late-stage scheme")
+    g.add_argument("--sph-domain-radius", type=float, default=0.0,
+                   help="m; SPH particles farther from the impact point fly ballistically (SPHImpact's "
+                        "DomainRadius); 0: no limit")
     g.add_argument("--ejecta-speed-limit", type=float, default=0.0,
                    help="m/s; faster SPH material leaves as ejecta (dropped). 0: 1 m/s at Ryugu, "
                         "Froude-scaled to the run's gravity and predicted crater")
@@ -154,6 +157,7 @@ def main(argv):
                            SurfaceGravity=args.gravity, ParticlesAcrossImpactor=args.sph_resolution,
                            TargetRadius=args.sph_target_radius, TargetContainer=1,
                            LateStageTime=args.late_stage_time, LateStageSoundSpeed=args.late_stage_sound_speed,
+                           DomainRadius=args.sph_domain_radius,
                            EndTime=args.handoff_time, OutputInterval=args.handoff_time)
     say(f"[1/5] SPH impact to {args.handoff_time:.2e} s")
     start = time.time()

@@ -1,0 +1,97 @@
+"""SPH alone to the crater's late stage: SPHImpact with the late-stage scheme (LateStageTime,
+LateStageSoundSpeed) and a DomainRadius for the fast ejecta, measured by CraterProfile at every
+output and compared with the Housen & Holsapple (2011) pi-scaling diameter for the same
+impactor, target and gravity. Prints one line per output (crater diameter at the pre-impact
+level, depth, rim diameter, kinetic energy of the slow material, seconds) and a summary.
+
+    scripts/pvbatch benchmarks/sci_crater/sph_late_stage.py            # 2 kg at 2 km/s, g = 9.81, ~8 min
+    scripts/pvbatch benchmarks/sci_crater/sph_late_stage.py --help
+"""
+
+import argparse
+import os
+import sys
+import time
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from craterkit import fetch, fetch_stage, field_value, load_plugin  # noqa: E402
+from craterkit.scaling import crater_diameter  # noqa: E402
+
+
+def say(message):
+    sys.stderr.write(message + "\n")
+    sys.stderr.flush()
+
+
+def material_density(name):
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "materials", name + ".cfg")
+    values = {}
+    with open(path) as f:
+        for line in f:
+            line = line.split("#")[0]
+            if "=" in line:
+                k, v = (s.strip() for s in line.split("=", 1))
+                values[k] = v
+    return float(values["rho0"]), float(values.get("distention", 1.0))
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0],
+                                formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    p.add_argument("--impactor-material", default="regolith",
+                   help="the default (a 2 kg regolith-matrix sphere) is resolved by 2 particles on the target's lattice")
+    p.add_argument("--impactor-mass", type=float, default=2.0, help="kg")
+    p.add_argument("--impact-speed", type=float, default=2000.0, help="m/s")
+    p.add_argument("--gravity", type=float, default=9.81, help="m/s^2")
+    p.add_argument("--resolution", type=int, default=2, help="SPH particles across the impactor")
+    p.add_argument("--target-radius", type=float, default=1.2, help="m (held in a rigid container)")
+    p.add_argument("--domain-radius", type=float, default=2.5, help="m; beyond it particles fly ballistically")
+    p.add_argument("--late-stage-time", type=float, default=1e-3, help="s")
+    p.add_argument("--late-stage-sound-speed", type=float, default=50.0, help="m/s")
+    p.add_argument("--end-time", type=float, default=0.3, help="s")
+    p.add_argument("--interval", type=float, default=0.02, help="s between measurements")
+    p.add_argument("--slow", type=float, default=5.0, help="m/s; the kinetic energy of material slower than this is printed")
+    args = p.parse_args([a for a in sys.argv[1:]])
+
+    simple = load_plugin()
+    rho_imp, distention_imp = material_density(args.impactor_material)
+    rho_matrix, distention = material_density("regolith")
+    rho_bulk = rho_matrix / distention
+    d_pi = crater_diameter(args.impactor_mass, args.impact_speed, rho_imp, rho_bulk, args.gravity)
+    sph = simple.SPHImpact(ImpactorMaterial=args.impactor_material, ImpactorMass=args.impactor_mass,
+                           ImpactSpeed=args.impact_speed, SurfaceGravity=args.gravity,
+                           ParticlesAcrossImpactor=args.resolution, TargetRadius=args.target_radius,
+                           TargetContainer=1, DomainRadius=args.domain_radius,
+                           LateStageTime=args.late_stage_time, LateStageSoundSpeed=args.late_stage_sound_speed,
+                           EndTime=args.end_time, OutputInterval=args.interval, KeptStates=0)
+    profile = simple.CraterProfile(Input=sph)
+    say(f"pi-scaling crater diameter: {d_pi:.3f} m (impactor density {rho_imp:g}, target {rho_bulk:.0f} kg/m^3, "
+        f"g = {args.gravity:g} m/s^2)")
+    start = time.time()
+    rows = []
+    for k in range(1, int(round(args.end_time / args.interval)) + 1):
+        t = k * args.interval
+        data = fetch_stage(sph, "SPH", t)
+        v = vtk_to_numpy(data.GetPointData().GetArray("Velocity"))
+        m = vtk_to_numpy(data.GetPointData().GetArray("Mass"))
+        speed = np.sqrt((v * v).sum(1))
+        slow = speed < args.slow
+        ke_slow = 0.5 * float((m[slow] * speed[slow] ** 2).sum())
+        profile.UpdatePipeline(t)
+        fd = fetch(profile).GetFieldData()
+        value = lambda name: fd.GetArray(name).GetValue(0) if fd.GetArray(name) else float("nan")  # noqa: E731
+        row = (t, int(field_value(data, "Step")), value("CraterDiameter"), value("CraterDepth"),
+               value("RimDiameter"), ke_slow, time.time() - start)
+        rows.append(row)
+        say(f"t = {row[0]:.3f} s  step {row[1]:6d}  D = {row[2]:.3f} m ({row[2] / d_pi:.2f} of pi-scaling)  "
+            f"depth {row[3]:.3f} m  rim diameter {row[4]:.3f} m  slow KE {row[5]:.3g} J  {row[6]:.0f} s")
+    last = rows[-1]
+    say(f"\n{data.GetNumberOfPoints()} SPH particles; at {last[0]:.3f} s: D = {last[2]:.3f} m = "
+        f"{last[2] / d_pi:.2f} x pi-scaling ({d_pi:.3f} m), depth {last[3]:.3f} m, depth/D {last[3] / last[2] if last[2] > 0 else float('nan'):.2f}; "
+        f"{last[6]:.0f} s on {os.cpu_count()} cores")
+
+
+main()
