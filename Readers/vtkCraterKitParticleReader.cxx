@@ -146,7 +146,7 @@ void vtkCraterKitParticleReader::Load()
         cache->Times.push_back(e.time);
       break;
     case PKDGRAV_SS:
-      cache->Single = std::make_unique<ParticleFrame>(parseSs(readFileBytes(file), file, this->PkdgravUnits != 0));
+      cache->Single = std::make_unique<ParticleFrame>(parseSs(FileBytes(file).view(), file, this->PkdgravUnits != 0));
       cache->Times.push_back(cache->Single->time);
       break;
     case CRATERKIT_CHECKPOINT:

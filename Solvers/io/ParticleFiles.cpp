@@ -1,6 +1,12 @@
 #include "io/ParticleFiles.h"
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <zlib.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <charconv>
@@ -621,6 +627,46 @@ std::string writeSs(const ParticleFrame& frame, bool scaleFromSI) {
 }
 
 // ---- files ------------------------------------------------------------------------------------------
+
+FileBytes::FileBytes(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0)
+    throw ParseError(path + ": cannot open the file");
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    throw ParseError(path + ": not a regular file");
+  }
+  const std::size_t size = static_cast<std::size_t>(st.st_size);
+  if (size > 0) {
+    void* m = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+    if (m == MAP_FAILED) {
+      ::close(fd);
+      throw ParseError(path + ": cannot map the file (" + std::strerror(errno) + ")");
+    }
+    map_ = static_cast<const char*>(m);
+    size_ = size;
+  }
+  ::close(fd);
+  if (size_ >= 2 && static_cast<unsigned char>(map_[0]) == 0x1f && static_cast<unsigned char>(map_[1]) == 0x8b) {
+    std::string out;
+    try {
+      out = gunzip(std::string_view(map_, size_), path);
+    } catch (...) {
+      ::munmap(const_cast<char*>(map_), size_);
+      throw;
+    }
+    ::munmap(const_cast<char*>(map_), size_);
+    map_ = nullptr;
+    size_ = 0;
+    owned_ = std::move(out);
+  }
+}
+
+FileBytes::~FileBytes() {
+  if (map_)
+    ::munmap(const_cast<char*>(map_), size_);
+}
 
 std::string readFileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);

@@ -322,3 +322,29 @@ TEST(ParticleFiles, ReadsTheLiggghtsSampleSeries) {
     EXPECT_NEAR(vz, -9.81 * (step - 0.5) * 1e-5, 2e-6);
   }
 }
+
+// FileBytes maps a plain file in place and decompresses a gzip one; both give the file's bytes,
+// so .ss parsing through it equals parsing the copied bytes; errors name the file.
+TEST(ParticleFiles, FileBytesMapsPlainFilesAndInflatesGzip) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("ck_filebytes_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const ParticleFrame f = randomFrame(100, 5);
+  const std::string bytes = writeSs(f, false);
+  const std::string plain = (dir / "a.ss").string();
+  std::ofstream(plain, std::ios::binary) << bytes;
+  {
+    const FileBytes mapped(plain);
+    EXPECT_EQ(mapped.view(), bytes);
+    const ParticleFrame g = parseSs(mapped.view(), plain, false);
+    EXPECT_EQ(g.particles.position, parseSs(bytes, plain, false).particles.position);
+  }
+  const std::string gz = (dir / "a.ss.gz").string();
+  ASSERT_EQ(std::system(("gzip -c " + plain + " > " + gz).c_str()), 0);
+  EXPECT_EQ(FileBytes(gz).view(), bytes);
+  const std::string empty = (dir / "empty.ss").string();
+  std::ofstream(empty).close();
+  EXPECT_TRUE(FileBytes(empty).view().empty());
+  EXPECT_NE(parseError([&] { FileBytes((dir / "missing.ss").string()); }).find("missing.ss: cannot open"), std::string::npos);
+  EXPECT_NE(parseError([&] { FileBytes(dir.string()); }).find("not a regular file"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
