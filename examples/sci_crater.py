@@ -30,7 +30,7 @@ import time
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-from craterkit import fetch, fetch_stage, field_value, load_plugin
+from craterkit import fetch, fetch_stage, field_value, load_plugin, material_value
 from craterkit.cross_section import crater_measures, render_cross_section
 from craterkit.figures import handoff_figure, profile_plot
 from craterkit.report import write_report
@@ -102,22 +102,6 @@ def parse_args(argv):
     if args.frames < 1:
         p.error("--frames must be at least 1")
     return args
-
-
-def material_value(name, key, default=None):
-    """A number from a material file under data/materials (rho0, distention, ...)."""
-    folder = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data", "materials")
-    path = os.path.join(folder, name + ".cfg")
-    if not os.path.isfile(path):
-        raise SystemExit(f"error: no material file {path}")
-    with open(path) as f:
-        for line in f:
-            k, _, value = line.split("#")[0].partition("=")
-            if k.strip() == key:
-                return float(value)
-    if default is None:
-        raise SystemExit(f"error: {path} has no {key}")
-    return default
 
 
 def speeds(data):

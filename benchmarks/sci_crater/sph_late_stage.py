@@ -17,25 +17,13 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
-from craterkit import fetch, fetch_stage, field_value, load_plugin  # noqa: E402
+from craterkit import fetch, fetch_stage, field_value, load_plugin, material_value  # noqa: E402
 from craterkit.scaling import crater_diameter  # noqa: E402
 
 
 def say(message):
     sys.stderr.write(message + "\n")
     sys.stderr.flush()
-
-
-def material_density(name):
-    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "materials", name + ".cfg")
-    values = {}
-    with open(path) as f:
-        for line in f:
-            line = line.split("#")[0]
-            if "=" in line:
-                k, v = (s.strip() for s in line.split("=", 1))
-                values[k] = v
-    return float(values["rho0"]), float(values.get("distention", 1.0))
 
 
 def main():
@@ -57,9 +45,8 @@ def main():
     args = p.parse_args([a for a in sys.argv[1:]])
 
     simple = load_plugin()
-    rho_imp, distention_imp = material_density(args.impactor_material)
-    rho_matrix, distention = material_density("regolith")
-    rho_bulk = rho_matrix / distention
+    rho_imp = material_value(args.impactor_material, "rho0")
+    rho_bulk = material_value("regolith", "rho0") / material_value("regolith", "distention", 1.0)
     d_pi = crater_diameter(args.impactor_mass, args.impact_speed, rho_imp, rho_bulk, args.gravity)
     sph = simple.SPHImpact(ImpactorMaterial=args.impactor_material, ImpactorMass=args.impactor_mass,
                            ImpactSpeed=args.impact_speed, SurfaceGravity=args.gravity,

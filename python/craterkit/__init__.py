@@ -68,3 +68,21 @@ def field_value(data, name, default=None):
     if array.GetNumberOfComponents() > 1:
         return [array.GetComponent(0, k) for k in range(array.GetNumberOfComponents())]
     return array.GetTuple1(0)
+
+
+def material_value(name, key, default=None):
+    """A number from a material file under data/materials (rho0, distention, ...); a missing
+    file, or a missing key without a default, ends the script with a message naming it."""
+    folder = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                          "data", "materials")
+    path = os.path.join(folder, name + ".cfg")
+    if not os.path.isfile(path):
+        raise SystemExit(f"error: no material file {path}")
+    with open(path) as f:
+        for line in f:
+            k, _, value = line.split("#")[0].partition("=")
+            if k.strip() == key:
+                return float(value)
+    if default is None:
+        raise SystemExit(f"error: {path} has no {key}")
+    return default
