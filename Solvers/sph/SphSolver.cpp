@@ -319,8 +319,11 @@ void SphSolver::buildNeighbours(const SphState& s, double margin) {
   const double cs = 0.5 * reach;
   double lo[3] = {INFINITY, INFINITY, INFINITY};
   for (std::size_t q = 0; q < m; ++q)
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(pos[3 * q + k]))
+        throw std::runtime_error("SPH: particle " + std::to_string(id[q] / 32) + " has a non-finite position");
       lo[k] = std::min(lo[k], pos[3 * q + k]);
+    }
   constexpr std::int64_t kAxis = (std::int64_t(1) << 21) - 1;
   auto coord = [&](double v, int k) {
     return static_cast<std::int64_t>(std::clamp(std::floor((v - lo[k]) / cs), 0.0, static_cast<double>(kAxis)));
