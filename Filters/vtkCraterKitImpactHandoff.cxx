@@ -117,6 +117,7 @@ int vtkCraterKitImpactHandoff::RequestData(
     p.ejectaDensity = this->EjectaDensity;
     p.groupEjecta = this->EjectaParticles == GROUPED_TO_BED_SIZE;
     p.dropEjecta = this->EjectaParticles == DROPPED;
+    p.curtainAsParticles = this->CurtainAsParticles != 0;
     // Ejecta stay inside the bed's container (GranularBed's field data).
     vtkFieldData* bfd = bedIn->GetFieldData();
     const std::string container = b::fieldString(bfd, "ContainerType");
@@ -170,10 +171,13 @@ int vtkCraterKitImpactHandoff::RequestData(
   };
   totals("SPHCompact", r.sphCompact);
   totals("SPHEjecta", r.sphEjecta);
+  totals("SPHCurtain", r.sphCurtain);
   totals("DEMMappedBeforeCorrection", r.demBefore);
   totals("DEMMapped", r.demMapped);
   totals("DEMEjecta", r.demEjecta);
-  b::addField(fd, "CompactMassRatio", r.sphCompact.mass > 0.0 ? r.demMapped.mass / r.sphCompact.mass : 0.0);
+  const double below = r.sphCompact.mass - r.sphCurtain.mass; // the compact mass the bed takes over
+  b::addField(fd, "CompactMassRatio", below > 0.0 ? r.demMapped.mass / below : 0.0);
+  b::addField(fd, "CurtainCount", static_cast<double>(r.curtainCount));
   b::addField(fd, "AlphaRadius", r.alphaRadius);
   b::addField(fd, "AlphaShapeVolume", r.shapeVolume);
   b::addField(fd, "BedRemoved", static_cast<double>(r.bedRemoved));
@@ -213,4 +217,5 @@ void vtkCraterKitImpactHandoff::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HandoffTime: " << this->HandoffTime << "\n";
   os << indent << "EjectaDensity: " << this->EjectaDensity << "\n";
   os << indent << "EjectaParticles: " << this->EjectaParticles << "\n";
+  os << indent << "CurtainAsParticles: " << this->CurtainAsParticles << "\n";
 }

@@ -40,6 +40,8 @@ public:
   enum EjectaModes { ONE_PER_SPH_PARTICLE = 0, GROUPED_TO_BED_SIZE = 1, DROPPED = 2 };
   vtkSetClampMacro(EjectaParticles, int, ONE_PER_SPH_PARTICLE, DROPPED);
   vtkGetMacro(EjectaParticles, int);
+  vtkSetMacro(CurtainAsParticles, int);
+  vtkGetMacro(CurtainAsParticles, int);
 
 protected:
   vtkCraterKitImpactHandoff();
@@ -59,6 +61,7 @@ private:
   double HandoffTime = -1.0;
   double EjectaDensity = 0.0;
   int EjectaParticles = ONE_PER_SPH_PARTICLE;
+  int CurtainAsParticles = 1;
 };
 
 #endif

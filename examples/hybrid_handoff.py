@@ -93,6 +93,7 @@ def main(argv):
         "compact_mass_ratio_dem_to_sph": field_value(dem0, "CompactMassRatio"),
         "sph_compact_momentum": vec("SPHCompactMomentum"),
         "dem_mapped_momentum": vec("DEMMappedMomentum"),
+        "sph_curtain_momentum": vec("SPHCurtainMomentum"),
         "sph_compact_angular_momentum": vec("SPHCompactAngularMomentum"),
         "dem_mapped_angular_momentum": vec("DEMMappedAngularMomentum"),
         "sph_ejecta_momentum": vec("SPHEjectaMomentum"),

@@ -264,6 +264,8 @@ def main(argv):
         "sph_ejecta_dropped": {"mass_kg": field_value(dem0, "SPHEjectaMass"), "momentum_kg_m_s": vec("SPHEjectaMomentum")},
         "sph_compact_momentum_kg_m_s": vec("SPHCompactMomentum"),
         "dem_mapped_momentum_kg_m_s": vec("DEMMappedMomentum"),
+        "sph_curtain_momentum_kg_m_s": vec("SPHCurtainMomentum"),
+        "curtain_particles": int(field_value(dem0, "CurtainCount")),
         "sph_compact_angular_momentum": vec("SPHCompactAngularMomentum"),
         "dem_mapped_angular_momentum": vec("DEMMappedAngularMomentum"),
         "compact_mass_ratio_dem_to_sph": field_value(dem0, "CompactMassRatio"),

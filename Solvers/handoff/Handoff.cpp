@@ -178,6 +178,14 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
     alphaRadius = 1.75 * sum / static_cast<double>(count);
   }
   out.alphaRadius = alphaRadius;
+  // The curtain: compact material higher than one alpha radius above the surface.
+  std::vector<std::size_t> curtain;
+  if (params.curtainAsParticles)
+    for (std::size_t i : compact)
+      if (sph.x[3 * i + 2] > region.surfaceHeight + alphaRadius)
+        curtain.push_back(i);
+  out.curtainCount = curtain.size();
+  out.sphCurtain = sphTotals(sph, curtain);
   AlphaShape shape(dt, alphaRadius * alphaRadius); // CGAL's alpha is the squared radius
   std::size_t interior = 0;
   for (auto c = shape.finite_cells_begin(); c != shape.finite_cells_end(); ++c)
@@ -280,6 +288,8 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
     std::size_t outside = 0;
     for (std::size_t i : compact) {
       const double* x = &sph.x[3 * i];
+      if (params.curtainAsParticles && x[2] > region.surfaceHeight + alphaRadius)
+        continue; // the curtain becomes particles
       bool in = true;
       for (int k = 0; k < 3; ++k)
         in = in && x[k] >= lo[k] - alphaRadius && x[k] <= hi[k] + alphaRadius;
@@ -376,6 +386,7 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   t0 = std::chrono::steady_clock::now();
   if (params.dropEjecta) // escaping: out.sphEjecta keeps what they carry away
     ejecta.clear();
+  ejecta.insert(ejecta.end(), curtain.begin(), curtain.end()); // the curtain lands: never dropped
   double rhoGrain = params.ejectaDensity, rmax = 0.0;
   if (rhoGrain == 0.0) {
     double m = 0.0, vol = 0.0;
@@ -592,11 +603,17 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   // momentum exactly.
   t0 = std::chrono::steady_clock::now();
   out.demBefore = totalsOf(p, &mapped);
+  HandoffTotals target = out.sphCompact; // what the mapped bed carries: the compact material below the curtain
+  target.mass -= out.sphCurtain.mass;
+  for (int a = 0; a < 3; ++a) {
+    target.momentum[a] -= out.sphCurtain.momentum[a];
+    target.angularMomentum[a] -= out.sphCurtain.angularMomentum[a];
+  }
   if (!mapped.empty()) {
     const HandoffTotals before = out.demBefore;
     Eigen::Vector3d dV;
     for (int a = 0; a < 3; ++a)
-      dV(a) = (out.sphCompact.momentum[a] - before.momentum[a]) / before.mass;
+      dV(a) = (target.momentum[a] - before.momentum[a]) / before.mass;
     for (std::size_t j : mapped)
       for (int a = 0; a < 3; ++a)
         p.velocity[3 * j + a] += dV(a);
@@ -612,7 +629,7 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
     }
     Eigen::Vector3d dL;
     for (int a = 0; a < 3; ++a)
-      dL(a) = out.sphCompact.angularMomentum[a] - shifted.angularMomentum[a];
+      dL(a) = target.angularMomentum[a] - shifted.angularMomentum[a];
     Eigen::FullPivLU<Eigen::Matrix3d> lu(I);
     if (lu.isInvertible()) {
       const Eigen::Vector3d dW = lu.solve(dL);

@@ -22,7 +22,9 @@
 //    than 1 % of a radius and stay inside the container's walls; one with no such place keeps
 //    its position with a smaller radius (same mass and momentum) that fits, if one does, and
 //    otherwise takes the place of the bed particles it overlaps. The momentum correction of
-//    step 4 is made after this, on the bed particles that remain.
+//    step 4 is made after this, on the bed particles that remain. Compact material above the
+//    surface (the curtain of a late hand-off) becomes particles the same way (curtainAsParticles),
+//    and the mapped bed then carries the momentum of the compact material below it.
 #pragma once
 
 #include "common/ParticleSet.h"
@@ -58,6 +60,11 @@ struct HandoffParams {
   int ejectaMaterial = -1;       // -1: the bed's first particle's material
   bool groupEjecta = false;      // one particle per cube of the bed's mean diameter instead of per SPH particle
   bool dropEjecta = false;       // no particles for the ejecta (they escape): only their totals are reported
+  // Compact SPH material above the target's surface (higher than one alpha radius over it: the
+  // ejecta curtain of a late hand-off, slower than the limit) has no bed particle to lend its
+  // momentum to: it becomes particles as the ejecta do (never dropped: it lands), and the
+  // mapped bed carries the momentum of the rest. False: it is mapped with the rest.
+  bool curtainAsParticles = true;
   // Where a sphere of radius r centred at x may be put (inside the container's walls); empty:
   // anywhere. Ejecta are moved along their velocity, forward first, then backward, to the
   // nearest place that is allowed and free.
@@ -77,9 +84,11 @@ struct HandoffResult {
   std::vector<long long> triangles;   // 3 vertex indices per triangle, outward normals
   double alphaRadius = 0.0;
   std::size_t compactCount = 0, ejectaCount = 0, bedRemoved = 0, bedMapped = 0;
+  std::size_t curtainCount = 0;       // compact SPH particles above the surface, made particles
   std::size_t ejectaShrunk = 0;       // ejecta with no free place on their path, made smaller to fit
   std::size_t bedEvicted = 0;         // bed particles whose place an ejecta particle took
   HandoffTotals sphCompact, sphEjecta, demMapped, demEjecta, demBefore; // demBefore: mapped set before correction
+  HandoffTotals sphCurtain;           // the part of sphCompact above the surface (in demEjecta, not demMapped)
   double shapeVolume = 0.0;           // volume of the alpha shape's interior cells, m³
   std::vector<std::string> warnings;
   struct Timing {

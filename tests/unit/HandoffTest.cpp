@@ -301,3 +301,45 @@ TEST(Handoff, GroupedEjectaKeepMassMomentumAndAngularMomentum) {
   EXPECT_LT(c.pErr, 1e-10);
   EXPECT_LT(c.lErr, 1e-10);
 }
+
+// A late hand-off: the hemisphere moves uniformly and a curtain of slow SPH material (a ring
+// of 400 particles, 0.2-0.4 m above the surface, rising at 0.5 m/s: below the 1 m/s limit)
+// flies above it. The curtain becomes particles (kept even when ejecta are dropped), the
+// mapped bed carries exactly the compact momentum below it, and everything adds up to the SPH
+// totals; with CurtainAsParticles off the bed takes the curtain's momentum as before.
+TEST(Handoff, CurtainAboveTheSurfaceBecomesParticles) {
+  const Field f = [](const double*, double* v) { v[0] = 0.1, v[1] = 0.0, v[2] = -0.2; };
+  SphSnapshot sph = lattice(f);
+  const std::size_t n0 = sph.size();
+  for (int k = 0; k < 400; ++k) {
+    const double phi = 2.0 * M_PI * k / 100.0, lift = 0.2 + 0.2 * (k / 100) / 3.0;
+    const double x[3] = {0.5 * std::cos(phi), 0.5 * std::sin(phi), lift}, v[3] = {0.0, 0.0, 0.5};
+    sph.x.insert(sph.x.end(), x, x + 3);
+    sph.v.insert(sph.v.end(), v, v + 3);
+    sph.mass.push_back(kRho * kDx * kDx * kDx);
+    sph.h.push_back(2.5 * kDx);
+  }
+  for (bool drop : {false, true}) {
+    HandoffParams params;
+    params.dropEjecta = drop;
+    const HandoffResult r = handoff(sph, bed(), hemisphere(), params);
+    EXPECT_EQ(r.curtainCount, 400u);
+    std::size_t inserted = 0;
+    for (int o : r.origin)
+      inserted += o == 1 ? 1 : 0;
+    EXPECT_EQ(inserted, 400u) << (drop ? "dropped" : "kept");
+    const double scale = r.sphCompact.mass * 0.5;
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(r.demMapped.momentum[a] + r.sphCurtain.momentum[a], r.sphCompact.momentum[a], 1e-10 * scale);
+      EXPECT_NEAR(r.demEjecta.momentum[a], r.sphCurtain.momentum[a], 1e-10 * scale); // no fast ejecta here
+    }
+    EXPECT_NEAR(r.sphCurtain.momentum[2], 400 * kRho * kDx * kDx * kDx * 0.5, 1e-12 * scale);
+    EXPECT_NEAR(r.demMapped.momentum[2], n0 * kRho * kDx * kDx * kDx * -0.2, 1e-10 * scale); // the hemisphere's own
+  }
+  HandoffParams off;
+  off.curtainAsParticles = false;
+  const HandoffResult r = handoff(sph, bed(), hemisphere(), off);
+  EXPECT_EQ(r.curtainCount, 0u);
+  for (int a = 0; a < 3; ++a)
+    EXPECT_NEAR(r.demMapped.momentum[a], r.sphCompact.momentum[a], 1e-10 * r.sphCompact.mass * 0.5);
+}
