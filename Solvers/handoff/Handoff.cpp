@@ -179,11 +179,13 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   }
   out.alphaRadius = alphaRadius;
   // The curtain: compact material higher than one alpha radius above the surface.
+  auto inCurtain = [&](std::size_t i) {
+    return params.curtainAsParticles && sph.x[3 * i + 2] > region.surfaceHeight + alphaRadius;
+  };
   std::vector<std::size_t> curtain;
-  if (params.curtainAsParticles)
-    for (std::size_t i : compact)
-      if (sph.x[3 * i + 2] > region.surfaceHeight + alphaRadius)
-        curtain.push_back(i);
+  for (std::size_t i : compact)
+    if (inCurtain(i))
+      curtain.push_back(i);
   out.curtainCount = curtain.size();
   out.sphCurtain = sphTotals(sph, curtain);
   AlphaShape shape(dt, alphaRadius * alphaRadius); // CGAL's alpha is the squared radius
@@ -287,9 +289,9 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
       }
     std::size_t outside = 0;
     for (std::size_t i : compact) {
-      const double* x = &sph.x[3 * i];
-      if (params.curtainAsParticles && x[2] > region.surfaceHeight + alphaRadius)
+      if (inCurtain(i))
         continue; // the curtain becomes particles
+      const double* x = &sph.x[3 * i];
       bool in = true;
       for (int k = 0; k < 3; ++k)
         in = in && x[k] >= lo[k] - alphaRadius && x[k] <= hi[k] + alphaRadius;
