@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -669,19 +668,8 @@ FileBytes::~FileBytes() {
 }
 
 std::string readFileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in)
-    throw ParseError(path + ": cannot open the file");
-  const std::streamoff size = in.tellg();
-  if (size < 0)
-    throw ParseError(path + ": cannot read the file size");
-  std::string raw(static_cast<std::size_t>(size), '\0');
-  in.seekg(0);
-  if (size > 0 && !in.read(raw.data(), size))
-    throw ParseError(path + ": read error");
-  if (raw.size() < 2 || static_cast<unsigned char>(raw[0]) != 0x1f || static_cast<unsigned char>(raw[1]) != 0x8b)
-    return raw;
-  return gunzip(raw, path);
+  const FileBytes file(path);
+  return std::string(file.view());
 }
 
 std::string gunzip(std::string_view raw, const std::string& path) {

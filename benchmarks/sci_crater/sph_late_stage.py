@@ -42,7 +42,7 @@ def main():
     p.add_argument("--end-time", type=float, default=0.3, help="s")
     p.add_argument("--interval", type=float, default=0.02, help="s between measurements")
     p.add_argument("--slow", type=float, default=5.0, help="m/s; the kinetic energy of material slower than this is printed")
-    args = p.parse_args([a for a in sys.argv[1:]])
+    args = p.parse_args()
 
     simple = load_plugin()
     rho_imp = material_value(args.impactor_material, "rho0")
