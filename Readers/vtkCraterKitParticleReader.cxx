@@ -22,7 +22,7 @@ struct vtkCraterKitParticleReader::Cache
   std::string File;
   int Format = 0;
   int Units = 1;
-  std::string Bytes;
+  std::string Bytes; // a dump of several snapshots (a copy: the file may be rewritten meanwhile)
   std::vector<craterkit::DumpIndexEntry> Index;
   std::unique_ptr<craterkit::ParticleFrame> Single;
   std::vector<double> Times;
@@ -140,11 +140,18 @@ void vtkCraterKitParticleReader::Load()
   switch (format)
   {
     case LAMMPS_DUMP:
-      cache->Bytes = readFileBytes(file);
-      cache->Index = indexDump(cache->Bytes, file);
+    {
+      // Parsed in place from the memory map; only a dump of several snapshots is kept (copied).
+      const FileBytes bytes(file);
+      cache->Index = indexDump(bytes.view(), file);
+      if (cache->Index.size() == 1)
+        cache->Single = std::make_unique<ParticleFrame>(parseDumpSnapshot(bytes.view(), cache->Index[0], file));
+      else
+        cache->Bytes.assign(bytes.view());
       for (const DumpIndexEntry& e : cache->Index)
         cache->Times.push_back(e.time);
       break;
+    }
     case PKDGRAV_SS:
       cache->Single = std::make_unique<ParticleFrame>(parseSs(FileBytes(file).view(), file, this->PkdgravUnits != 0));
       cache->Times.push_back(cache->Single->time);
@@ -187,7 +194,8 @@ int vtkCraterKitParticleReader::RequestData(
   using namespace craterkit;
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  ParticleFrame frame;
+  ParticleFrame parsed;
+  const ParticleFrame* shown = &parsed;
   std::size_t snapshot = 0;
   const bool ok = bridge::run(this, [&] {
     this->Load();
@@ -200,13 +208,14 @@ int vtkCraterKitParticleReader::RequestData(
       snapshot = it == times.begin() ? 0 : static_cast<std::size_t>(it - times.begin()) - 1;
     }
     if (this->Loaded->Single)
-      frame = *this->Loaded->Single;
+      shown = this->Loaded->Single.get();
     else
-      frame = parseDumpSnapshot(this->Loaded->Bytes, this->Loaded->Index[snapshot], this->Loaded->File);
+      parsed = parseDumpSnapshot(this->Loaded->Bytes, this->Loaded->Index[snapshot], this->Loaded->File);
   });
   if (!ok)
     return 0;
 
+  const ParticleFrame& frame = *shown;
   bridge::toPolyData(frame.particles, output);
   vtkPointData* pd = output->GetPointData();
   if (!frame.hasVelocity)

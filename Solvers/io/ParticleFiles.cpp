@@ -5,16 +5,21 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include <cerrno>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
 
 namespace craterkit {
@@ -81,6 +86,23 @@ std::string printable(std::string_view s) {
   return out;
 }
 
+// LAMMPS's spellings of inf and nan, which from_chars does not read from every writer.
+bool special(std::string_view token, double& v) {
+  std::string t(token.substr(0, 8));
+  std::transform(t.begin(), t.end(), t.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  if (token.size() > 8)
+    return false;
+  if (t == "nan" || t == "-nan" || t == "+nan")
+    v = std::nan("");
+  else if (t == "inf" || t == "+inf")
+    v = std::numeric_limits<double>::infinity();
+  else if (t == "-inf")
+    v = -std::numeric_limits<double>::infinity();
+  else
+    return false;
+  return true;
+}
+
 double toDouble(std::string_view token, const Cursor& c, std::size_t line, const char* what) {
   double v = 0.0;
   const char* b = token.data();
@@ -88,19 +110,21 @@ double toDouble(std::string_view token, const Cursor& c, std::size_t line, const
   if (!token.empty() && *b == '+')
     ++b;
   const auto r = std::from_chars(b, e, v);
-  if (r.ec != std::errc() || r.ptr != e) {
-    // from_chars does not read "inf"/"nan" spellings of every writer; accept LAMMPS's.
-    std::string t(token);
-    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    if (t == "nan" || t == "-nan")
-      return std::nan("");
-    if (t == "inf" || t == "+inf")
-      return std::numeric_limits<double>::infinity();
-    if (t == "-inf")
-      return -std::numeric_limits<double>::infinity();
+  if ((r.ec != std::errc() || r.ptr != e) && !special(token, v))
     c.fail(std::string("expected a number for ") + what + ", got '" + printable(token) + "'", line);
-  }
   return v;
+}
+
+// A number read in place ends at a blank, a line end or the end of the text.
+bool endsToken(const char* p, const char* end) {
+  return p == end || *p == ' ' || *p == '\t' || *p == '\n' || *p == '\r';
+}
+// The token that starts at p (up to a blank or line end).
+std::string_view tokenAt(const char* p, const char* end) {
+  const char* q = p;
+  while (q < end && *q != ' ' && *q != '\t' && *q != '\n' && *q != '\r')
+    ++q;
+  return std::string_view(p, static_cast<std::size_t>(q - p));
 }
 
 long long toInteger(std::string_view token, const Cursor& c, std::size_t line, const char* what) {
@@ -205,25 +229,91 @@ DumpIndexEntry readDumpHeader(Cursor& c, ParticleFrame* frame, std::vector<std::
   }
 }
 
-// Moves the cursor past n lines (fast: no parsing).
-void skipLines(Cursor& c, std::size_t n, std::size_t firstLine) {
-  for (std::size_t k = 0; k < n; ++k) {
-    if (c.atEnd()) {
-      std::ostringstream s;
-      s << "the snapshot starting at line " << firstLine << " declares more atoms than the file holds ("
-        << k << " lines found)";
-      c.fail(s.str());
-    }
-    const std::size_t end = c.text.find('\n', c.pos);
-    c.pos = end == std::string_view::npos ? c.text.size() : end + 1;
-    ++c.line;
+// The number of '\n' in [p, e) (memchr: vectorised by the C library, faster than a loop here).
+std::size_t countNewlines(const char* p, const char* e) {
+  std::size_t n = 0;
+  while (p < e) {
+    const void* q = std::memchr(p, '\n', static_cast<std::size_t>(e - p));
+    if (!q)
+      break;
+    ++n;
+    p = static_cast<const char*>(q) + 1;
   }
+  return n;
+}
+
+// Newlines per fixed block of a text, counted in parallel, so that the atom lines of a large
+// snapshot are skipped a block at a time.
+struct NewlineCensus {
+  static constexpr std::size_t kBlock = std::size_t(1) << 20;
+  std::vector<std::size_t> perBlock;
+  explicit NewlineCensus(std::string_view text) : perBlock((text.size() + kBlock - 1) / kBlock) {
+    const std::ptrdiff_t blocks = static_cast<std::ptrdiff_t>(perBlock.size());
+#pragma omp parallel for schedule(static) if (blocks > 8)
+    for (std::ptrdiff_t b = 0; b < blocks; ++b) {
+      const std::size_t from = static_cast<std::size_t>(b) * kBlock;
+      perBlock[static_cast<std::size_t>(b)] = countNewlines(text.data() + from, text.data() + std::min(text.size(), from + kBlock));
+    }
+  }
+};
+
+// Past the n-th line that starts at p (a last line may end at e without '\n'); sets `lines` to
+// the number of lines passed (fewer than n only when e came first). With a census of the text
+// that starts at `base`, whole blocks are skipped by their counts.
+const char* skipLineRange(const char* p, const char* e, std::size_t n, std::size_t& lines,
+                          const char* base = nullptr, const NewlineCensus* census = nullptr) {
+  lines = 0;
+  auto scan = [&](const char* stop) {
+    for (; lines < n && p < stop; ++lines) {
+      const void* q = std::memchr(p, '\n', static_cast<std::size_t>(stop - p));
+      if (!q) {
+        if (stop == e)
+          p = e, ++lines; // the unterminated last line
+        else
+          p = stop;
+        return;
+      }
+      p = static_cast<const char*>(q) + 1;
+    }
+  };
+  if (census) {
+    const std::size_t kBlock = NewlineCensus::kBlock;
+    std::size_t block = static_cast<std::size_t>(p - base) / kBlock + 1; // the first whole block after p
+    scan(std::min(e, base + block * kBlock));
+    while (lines < n && block < census->perBlock.size() && lines + census->perBlock[block] < n &&
+           base + (block + 1) * kBlock <= e) {
+      lines += census->perBlock[block];
+      p = base + (block + 1) * kBlock;
+      ++block;
+    }
+  }
+  scan(e);
+  return p;
+}
+
+// Moves the cursor past n lines (fast: no parsing).
+void skipLines(Cursor& c, std::size_t n, std::size_t firstLine, const NewlineCensus* census = nullptr) {
+  const char* begin = c.text.data();
+  std::size_t lines = 0;
+  const char* p = skipLineRange(begin + c.pos, begin + c.text.size(), n, lines, begin, census);
+  if (lines < n) {
+    std::ostringstream s;
+    s << "the snapshot starting at line " << firstLine << " declares more atoms than the file holds ("
+      << lines << " lines found)";
+    c.line += lines;
+    c.fail(s.str());
+  }
+  c.pos = static_cast<std::size_t>(p - begin);
+  c.line += n;
 }
 } // namespace
 
 std::vector<DumpIndexEntry> indexDump(std::string_view text, const std::string& fileName) {
   Cursor c{text, 0, 1, fileName};
   std::vector<DumpIndexEntry> out;
+  std::unique_ptr<NewlineCensus> census;
+  if (text.size() > 8 * NewlineCensus::kBlock)
+    census = std::make_unique<NewlineCensus>(text);
   while (true) {
     // Skip blank lines between snapshots.
     while (!c.atEnd()) {
@@ -236,12 +326,13 @@ std::vector<DumpIndexEntry> indexDump(std::string_view text, const std::string& 
     }
     if (c.atEnd())
       break;
-    const DumpIndexEntry e = readDumpHeader(c, nullptr, nullptr);
+    DumpIndexEntry e = readDumpHeader(c, nullptr, nullptr);
     // Each atom line needs at least two bytes: refuse counts the file cannot hold before
     // anything is allocated for them.
     if (e.count > (text.size() - c.pos) / 2 + 1)
       c.fail("NUMBER OF ATOMS " + std::to_string(e.count) + " exceeds what the rest of the file can hold", e.line);
-    skipLines(c, e.count, e.line);
+    skipLines(c, e.count, e.line, census.get());
+    e.end = c.pos;
     out.push_back(e);
   }
   if (out.empty())
@@ -310,77 +401,144 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
   s.density.assign(n, 0.0);
   s.material.assign(n, 0);
   s.id.resize(n);
-  // Line starts first (one fast pass), then the rows in parallel; the first bad row (lowest
-  // line) is the one reported, whatever the thread count.
-  std::vector<std::size_t> start(n + 1);
-  const std::size_t firstLine = c.line;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (c.atEnd())
-      c.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(n) + " atoms");
-    start[i] = c.pos;
-    const std::size_t end = text.find('\n', c.pos);
-    c.pos = end == std::string_view::npos ? text.size() : end + 1;
-    ++c.line;
+  // The rows: the snapshot's bytes are cut into one piece per thread at line ends, the lines
+  // of each piece counted (so every row knows its index), then the pieces parsed in place.
+  // The first bad row (lowest line) is the one reported, whatever the thread count.
+  const std::size_t firstLine = c.line, bodyStart = c.pos;
+  std::size_t bodyEnd = entry.end;
+  if (bodyEnd < bodyStart || bodyEnd > text.size() || entry.end == 0) {
+    skipLines(c, n, e.line); // no usable index end: find it (and report a short file)
+    bodyEnd = c.pos;
   }
-  start[n] = c.pos;
+  const char* const base = text.data();
   std::size_t badRow = n;
   std::string badMessage;
-#pragma omp parallel if (n >= 20000)
-  {
-    std::vector<std::string_view> tok(ncol + 1);
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t at = firstLine + i;
-      try {
-        std::string_view l = text.substr(start[i], start[i + 1] - start[i]);
-        while (!l.empty() && (l.back() == '\n' || l.back() == '\r'))
-          l.remove_suffix(1);
-        const std::size_t got = split(l, tok.data(), tok.size());
-        if (got != ncol)
-          c.fail("expected " + std::to_string(ncol) + " values, found " + std::to_string(got), at);
-        s.id[i] = static_cast<std::int64_t>(i + 1);
-        for (std::size_t k = 0; k < ncol; ++k) {
-          switch (kind[k]) {
-          case Col::Id:
-            s.id[i] = toInteger(tok[k], c, at, "id");
-            break;
-          case Col::Type: {
-            const long long t = toInteger(tok[k], c, at, "type");
-            if (t < 1 || t > std::numeric_limits<int>::max())
-              c.fail("atom type " + std::to_string(t) + " out of range", at);
-            s.material[i] = static_cast<int>(t - 1);
-            break;
-          }
-          case Col::X: s.position[3 * i] = toDouble(tok[k], c, at, "x"); break;
-          case Col::Y: s.position[3 * i + 1] = toDouble(tok[k], c, at, "y"); break;
-          case Col::Z: s.position[3 * i + 2] = toDouble(tok[k], c, at, "z"); break;
-          case Col::Xs: s.position[3 * i] = f.box[0] + toDouble(tok[k], c, at, "xs") * (f.box[1] - f.box[0]); break;
-          case Col::Ys: s.position[3 * i + 1] = f.box[2] + toDouble(tok[k], c, at, "ys") * (f.box[3] - f.box[2]); break;
-          case Col::Zs: s.position[3 * i + 2] = f.box[4] + toDouble(tok[k], c, at, "zs") * (f.box[5] - f.box[4]); break;
-          case Col::Vx: s.velocity[3 * i] = toDouble(tok[k], c, at, "vx"); break;
-          case Col::Vy: s.velocity[3 * i + 1] = toDouble(tok[k], c, at, "vy"); break;
-          case Col::Vz: s.velocity[3 * i + 2] = toDouble(tok[k], c, at, "vz"); break;
-          case Col::Wx: s.angularVelocity[3 * i] = toDouble(tok[k], c, at, "omegax"); break;
-          case Col::Wy: s.angularVelocity[3 * i + 1] = toDouble(tok[k], c, at, "omegay"); break;
-          case Col::Wz: s.angularVelocity[3 * i + 2] = toDouble(tok[k], c, at, "omegaz"); break;
-          case Col::Radius: s.radius[i] = toDouble(tok[k], c, at, "radius"); break;
-          case Col::Diameter: s.radius[i] = 0.5 * toDouble(tok[k], c, at, "diameter"); break;
-          case Col::Mass: s.mass[i] = toDouble(tok[k], c, at, "mass"); break;
-          case Col::Density: s.density[i] = toDouble(tok[k], c, at, "density"); break;
-          case Col::Extra: {
-            ExtraArray& x = f.extra[static_cast<std::size_t>(extraIndex[k])];
-            x.values[i * x.components + extraComp[k]] = toDouble(tok[k], c, at, names[k].c_str());
-            break;
-          }
-          }
-        }
-      } catch (const ParseError& e) {
+  auto fail = [&](std::size_t row, const std::string& what) {
 #pragma omp critical(craterkit_dump_error)
-        if (i < badRow) {
-          badRow = i;
-          badMessage = e.what();
+    if (row < badRow) {
+      badRow = row;
+      std::ostringstream m;
+      m << fileName << ":" << firstLine + row << ": " << what;
+      badMessage = m.str();
+    }
+  };
+#ifdef _OPENMP
+  const int pieces = n >= 20000 ? std::max(1, omp_get_max_threads()) : 1;
+#else
+  const int pieces = 1; // the fuzzing build has no OpenMP
+#endif
+  std::vector<std::size_t> cut(static_cast<std::size_t>(pieces) + 1, bodyEnd), firstRow(static_cast<std::size_t>(pieces) + 1, 0);
+  cut[0] = bodyStart;
+  for (int t = 1; t < pieces; ++t) {
+    const std::size_t at = std::max(cut[t - 1], bodyStart + (bodyEnd - bodyStart) * static_cast<std::size_t>(t) / static_cast<std::size_t>(pieces));
+    const void* nl = at < bodyEnd ? std::memchr(base + at, '\n', bodyEnd - at) : nullptr;
+    cut[t] = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - base) + 1 : bodyEnd;
+  }
+#pragma omp parallel for schedule(static, 1) num_threads(pieces)
+  for (int t = 0; t < pieces; ++t) {
+    const char* p = base + cut[t];
+    const char* q = base + cut[t + 1];
+    std::size_t lines = countNewlines(p, q);
+    if (q > p && q[-1] != '\n')
+      ++lines; // the unterminated last line of the file
+    firstRow[t + 1] = lines;
+  }
+  for (int t = 0; t < pieces; ++t)
+    firstRow[t + 1] += firstRow[t];
+  if (firstRow[pieces] != n) {
+    // The index entry does not describe these bytes (the file changed since it was indexed).
+    Cursor again{text, bodyStart, firstLine, fileName};
+    skipLines(again, n, e.line);
+    c.fail("the snapshot's atom lines end elsewhere than its index says; index the file again", e.line);
+  }
+  const bool anyExtra = !f.extra.empty();
+#pragma omp parallel for schedule(static, 1) num_threads(pieces)
+  for (int t = 0; t < pieces; ++t) {
+    const char* p = base + cut[t];
+    const char* const end = base + cut[t + 1];
+    for (std::size_t i = firstRow[t]; i < firstRow[t + 1]; ++i) {
+      s.id[i] = static_cast<std::int64_t>(i + 1);
+      std::size_t k = 0;
+      for (; k < ncol; ++k) {
+        while (p < end && (*p == ' ' || *p == '\t'))
+          ++p;
+        if (p == end || *p == '\n' || *p == '\r')
+          break;
+        const char* const token = p;
+        const Col kk = kind[k];
+        if (kk == Col::Id || kk == Col::Type) {
+          long long v = 0;
+          const auto r = std::from_chars(p, end, v);
+          p = r.ptr;
+          if (r.ec != std::errc() || !endsToken(p, end)) {
+            fail(i, std::string("expected an integer for ") + names[k] + ", got '" + printable(tokenAt(token, end)) + "'");
+            break;
+          }
+          if (kk == Col::Id) {
+            s.id[i] = v;
+          } else if (v < 1 || v > std::numeric_limits<int>::max()) {
+            fail(i, "atom type " + std::to_string(v) + " out of range");
+            break;
+          } else {
+            s.material[i] = static_cast<int>(v - 1);
+          }
+          continue;
+        }
+        double v = 0.0;
+        const auto r = std::from_chars(p + (*p == '+'), end, v);
+        p = r.ptr;
+        if (r.ec != std::errc() || !endsToken(p, end)) {
+          // from_chars does not read every writer's spelling of inf and nan; accept LAMMPS's.
+          const std::string_view t = tokenAt(token, end);
+          if (!special(t, v)) {
+            fail(i, std::string("expected a number for ") + names[k] + ", got '" + printable(t) + "'");
+            break;
+          }
+          p = token + t.size();
+        }
+        switch (kk) {
+        case Col::X: s.position[3 * i] = v; break;
+        case Col::Y: s.position[3 * i + 1] = v; break;
+        case Col::Z: s.position[3 * i + 2] = v; break;
+        case Col::Xs: s.position[3 * i] = f.box[0] + v * (f.box[1] - f.box[0]); break;
+        case Col::Ys: s.position[3 * i + 1] = f.box[2] + v * (f.box[3] - f.box[2]); break;
+        case Col::Zs: s.position[3 * i + 2] = f.box[4] + v * (f.box[5] - f.box[4]); break;
+        case Col::Vx: s.velocity[3 * i] = v; break;
+        case Col::Vy: s.velocity[3 * i + 1] = v; break;
+        case Col::Vz: s.velocity[3 * i + 2] = v; break;
+        case Col::Wx: s.angularVelocity[3 * i] = v; break;
+        case Col::Wy: s.angularVelocity[3 * i + 1] = v; break;
+        case Col::Wz: s.angularVelocity[3 * i + 2] = v; break;
+        case Col::Radius: s.radius[i] = v; break;
+        case Col::Diameter: s.radius[i] = 0.5 * v; break;
+        case Col::Mass: s.mass[i] = v; break;
+        case Col::Density: s.density[i] = v; break;
+        default:
+          if (anyExtra) {
+            ExtraArray& x = f.extra[static_cast<std::size_t>(extraIndex[k])];
+            x.values[i * x.components + extraComp[k]] = v;
+          }
+          break;
         }
       }
+      // The rest of the line: blanks, then its end; more values are a count mismatch too.
+      if (k == ncol) {
+        while (p < end && (*p == ' ' || *p == '\t' || *p == '\r'))
+          ++p;
+        if (p < end && *p != '\n') {
+          const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
+          const std::string_view rest(p, static_cast<std::size_t>((nl ? static_cast<const char*>(nl) : end) - p));
+          fail(i, "expected " + std::to_string(ncol) + " values, found " + std::to_string(ncol + split(rest, nullptr, 0)));
+        }
+      } else if (p == end || *p == '\n' || *p == '\r') {
+        fail(i, "expected " + std::to_string(ncol) + " values, found " + std::to_string(k));
+      } // else: the row's bad value was reported
+      if (p < end && *p != '\n') {
+        const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
+        p = nl ? static_cast<const char*>(nl) : end;
+      }
+      p += p < end; // past the '\n'
+
     }
   }
   if (badRow < n)
@@ -394,7 +552,7 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
   f.hasId = has[static_cast<int>(Col::Id)];
   if (f.hasMass && f.hasRadius && !f.hasDensity) {
     for (std::size_t i = 0; i < n; ++i)
-      s.density[i] = s.radius[i] > 0.0 ? s.mass[i] / (4.0 / 3.0 * M_PI * std::pow(s.radius[i], 3)) : 0.0;
+      s.density[i] = s.radius[i] > 0.0 ? s.mass[i] / (4.0 / 3.0 * M_PI * s.radius[i] * s.radius[i] * s.radius[i]) : 0.0;
     f.hasDensity = true;
   }
   return f;

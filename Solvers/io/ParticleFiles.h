@@ -55,7 +55,8 @@ struct DumpIndexEntry {
   std::size_t line = 1;   // line number of that line
   long long timestep = 0;
   std::size_t count = 0;
-  double time = 0.0; // its ITEM: TIME, else the step number
+  double time = 0.0;    // its ITEM: TIME, else the step number
+  std::size_t end = 0;  // byte offset just past its last atom line (0: not known, found again)
 };
 std::vector<DumpIndexEntry> indexDump(std::string_view text, const std::string& fileName);
 // Parses the snapshot that starts at entry.offset.
@@ -82,7 +83,7 @@ std::string writeSs(const ParticleFrame& frame, bool scaleFromSI);
 // read in place, populated up front); a gzip file (by its magic) is decompressed into memory.
 // Throws ParseError naming the file. Mapped bytes are only valid while the file is not
 // truncated by another program, so keep the object no longer than a parse (the dump reader
-// keeps a copy instead, see readFileBytes).
+// keeps a copy of a dump of several snapshots, see readFileBytes).
 class FileBytes {
 public:
   explicit FileBytes(const std::string& path);

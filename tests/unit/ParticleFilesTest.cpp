@@ -3,6 +3,7 @@
 #include "io/ParticleFiles.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -276,13 +277,31 @@ run 0
   std::filesystem::remove_all(dir);
 }
 
-// Large snapshots are parsed in parallel: the same values, and the first bad row reported.
+// Large snapshots are indexed block by block and parsed in pieces, one per thread: the same
+// values and the same first bad row for any number of pieces; a snapshot after a large one is
+// found where it starts.
 TEST(LammpsDump, LargeSnapshotsParseInParallelAndReportTheFirstBadRow) {
   const ParticleFrame f = randomFrame(50000, 6);
+  const ParticleFrame small = randomFrame(7, 8);
   std::string text = writeDump(f);
-  const std::vector<DumpIndexEntry> index = indexDump(text, "big.dump");
-  expectSameParticles(f.particles, parseDumpSnapshot(text, index[0], "big.dump").particles);
-  // Corrupt the rows on file lines 30010 and 45010 (the later one first, so both stay put).
+  ASSERT_GT(text.size(), 9u << 20); // large enough for the block census of indexDump
+  const std::string second = writeDump(small);
+  const std::string both = text + second.substr(0, second.size() - 1); // its last line unterminated
+  const int threadsBefore = omp_get_max_threads();
+  for (int threads : {1, 2, 3, 5}) {
+    omp_set_num_threads(threads);
+    const std::vector<DumpIndexEntry> index = indexDump(both, "big.dump");
+    ASSERT_EQ(index.size(), 2u);
+    EXPECT_EQ(index[1].offset, text.size());
+    EXPECT_EQ(index[1].end, both.size());
+    expectSameParticles(f.particles, parseDumpSnapshot(both, index[0], "big.dump").particles);
+    expectSameParticles(small.particles, parseDumpSnapshot(both, index[1], "big.dump").particles);
+    DumpIndexEntry unknownEnd = index[0]; // an entry without its end finds it again
+    unknownEnd.end = 0;
+    expectSameParticles(f.particles, parseDumpSnapshot(both, unknownEnd, "big.dump").particles);
+  }
+  // Corrupt the rows on file lines 30010 and 45010 (the later one first, so both stay put),
+  // then line 20010 with one value too many.
   auto lineStart = [&](std::size_t line) {
     std::size_t pos = 0;
     for (std::size_t k = 1; k < line; ++k)
@@ -291,8 +310,18 @@ TEST(LammpsDump, LargeSnapshotsParseInParallelAndReportTheFirstBadRow) {
   };
   text.insert(lineStart(45010), "x");
   text.insert(lineStart(30010), "y");
-  EXPECT_NE(dumpError(text).find("bad.dump:30010: expected an integer for id, got 'y"), std::string::npos)
-      << dumpError(text);
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    EXPECT_NE(dumpError(text).find("bad.dump:30010: expected an integer for id, got 'y"), std::string::npos)
+        << dumpError(text);
+  }
+  text.insert(text.find('\n', lineStart(20010)), " 7");
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    EXPECT_NE(dumpError(text).find("bad.dump:20010: expected 17 values, found 18"), std::string::npos)
+        << dumpError(text);
+  }
+  omp_set_num_threads(threadsBefore);
 }
 
 // Dumps written by LIGGGHTS itself (data/samples/liggghts, see its README): counts and mass as
