@@ -42,18 +42,28 @@ def main():
     p.add_argument("--end-time", type=float, default=0.3, help="s")
     p.add_argument("--interval", type=float, default=0.02, help="s between measurements")
     p.add_argument("--slow", type=float, default=5.0, help="m/s; the kinetic energy of material slower than this is printed")
+    p.add_argument("--set", action="append", default=[], metavar="PROPERTY=VALUE",
+                   help="any other SPHImpact property, e.g. --set FrictionAngle=25 --set TargetPorosity=0.4")
     args = p.parse_args()
+    extra = {}
+    for item in args.set:
+        key, sep, value = item.partition("=")
+        if not sep:
+            p.error(f"--set {item}: expected PROPERTY=VALUE")
+        extra[key] = float(value)
 
     simple = load_plugin()
     rho_imp = material_value(args.impactor_material, "rho0")
     rho_bulk = material_value("regolith", "rho0") / material_value("regolith", "distention", 1.0)
+    if extra.get("TargetPorosity", -1.0) >= 0.0:
+        rho_bulk = material_value("regolith", "rho0") * (1.0 - extra["TargetPorosity"])
     d_pi = crater_diameter(args.impactor_mass, args.impact_speed, rho_imp, rho_bulk, args.gravity)
     sph = simple.SPHImpact(ImpactorMaterial=args.impactor_material, ImpactorMass=args.impactor_mass,
                            ImpactSpeed=args.impact_speed, SurfaceGravity=args.gravity,
                            ParticlesAcrossImpactor=args.resolution, TargetRadius=args.target_radius,
                            TargetContainer=1, DomainRadius=args.domain_radius,
                            LateStageTime=args.late_stage_time, LateStageSoundSpeed=args.late_stage_sound_speed,
-                           EndTime=args.end_time, OutputInterval=args.interval, KeptStates=0)
+                           EndTime=args.end_time, OutputInterval=args.interval, KeptStates=0, **extra)
     profile = simple.CraterProfile(Input=sph)
     say(f"pi-scaling crater diameter: {d_pi:.3f} m (impactor density {rho_imp:g}, target {rho_bulk:.0f} kg/m^3, "
         f"g = {args.gravity:g} m/s^2)")
