@@ -3,6 +3,8 @@
 // A periodic hard-disk gas (disks of one size, equal masses, started on a square lattice
 // with random velocity directions) is equilibrated for 2 N collisions, then timed over
 // 10 N collisions. Prints one JSON object per N. See benchmarks/README.md.
+// Environment: CK_SHUFFLE=1 numbers the disks in random order (as a long run or a random
+// packing leaves them) instead of along the lattice.
 #include "common/Random.h"
 #include "edmd/HardDiskSystem.h"
 
@@ -10,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 #include <vector>
 
 using namespace craterkit;
@@ -25,10 +28,17 @@ int main(int argc, char** argv) {
     const double r = 1.0, side = std::sqrt(n * M_PI * r * r / eta);
     const std::size_t k = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(n))));
     Random rng(5);
+    std::vector<std::size_t> site(n);
+    for (std::size_t i = 0; i < n; ++i)
+      site[i] = i;
+    const char* shuffle = std::getenv("CK_SHUFFLE");
+    if (shuffle && std::atoi(shuffle) != 0)
+      for (std::size_t i = n - 1; i > 0; --i) // Fisher–Yates
+        std::swap(site[i], site[static_cast<std::size_t>(rng.uniform() * static_cast<double>(i + 1)) % (i + 1)]);
     HardDisks d;
     for (std::size_t i = 0; i < n; ++i) {
       const double a = 2.0 * M_PI * rng.uniform();
-      d.add((i % k + 0.5) * side / k, (i / k + 0.5) * side / k, std::cos(a), std::sin(a), r, 1.0, 0,
+      d.add((site[i] % k + 0.5) * side / k, (site[i] / k + 0.5) * side / k, std::cos(a), std::sin(a), r, 1.0, 0,
             static_cast<std::int64_t>(i));
     }
     HardDiskParams p;
