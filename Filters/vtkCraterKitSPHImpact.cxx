@@ -68,6 +68,7 @@ void vtkCraterKitSPHImpact::BuildRun()
   setup.targetShape = this->TargetShape == HALF_SPACE ? SphImpactSetup::Shape::HalfSpace
                                                       : SphImpactSetup::Shape::Hemisphere;
   setup.targetRadius = this->TargetRadius;
+  setup.coarsening = this->TargetCoarsening;
   setup.targetPorosity = this->TargetPorosity;
   setup.frictionAngle = this->FrictionAngle;
   setup.cohesion = this->Cohesion;
@@ -176,6 +177,7 @@ int vtkCraterKitSPHImpact::RequestData(
   b::addField(fd, "ParticleSpacing", this->Spacing);
   b::addField(fd, "SurfaceHeight", 0.0);
   b::addField(fd, "TargetRadius", this->TargetRadius);
+  b::addField(fd, "TargetCoarsening", this->TargetCoarsening);
   b::addField(fd, "TargetContainer", this->TargetContainer ? 1.0 : 0.0);
   b::addField(fd, "ContainerParticles", static_cast<double>(this->ContainerParticles));
   b::addField(fd, "TargetShape", std::string(this->TargetShape == HALF_SPACE ? "HalfSpace" : "Hemisphere"));
@@ -200,6 +202,7 @@ void vtkCraterKitSPHImpact::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TargetMaterial: " << this->TargetMaterial << "\n";
   os << indent << "TargetShape: " << this->TargetShape << "\n";
   os << indent << "TargetRadius: " << this->TargetRadius << "\n";
+  os << indent << "TargetCoarsening: " << this->TargetCoarsening << "\n";
   os << indent << "TargetPorosity: " << this->TargetPorosity << "\n";
   os << indent << "FrictionAngle: " << this->FrictionAngle << "\n";
   os << indent << "Cohesion: " << this->Cohesion << "\n";

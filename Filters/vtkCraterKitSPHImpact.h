@@ -57,6 +57,11 @@ public:
   vtkGetMacro(TargetShape, int);
   vtkSetMacro(TargetRadius, double);
   vtkGetMacro(TargetRadius, double);
+
+  // Graded target: 1 is one lattice; above 1, shells beyond four impactor radii coarsen in
+  // proportion to the distance, up to this multiple of the impactor's spacing.
+  vtkSetMacro(TargetCoarsening, double);
+  vtkGetMacro(TargetCoarsening, double);
   vtkSetMacro(TargetPorosity, double);
   vtkGetMacro(TargetPorosity, double);
   vtkSetMacro(FrictionAngle, double);
@@ -121,6 +126,7 @@ private:
   std::string TargetMaterial = "regolith";
   int TargetShape = HEMISPHERE;
   double TargetRadius = 0.3;
+  double TargetCoarsening = 1.0;
   double TargetPorosity = -1.0;
   double FrictionAngle = 30.0;
   double Cohesion = 0.0;

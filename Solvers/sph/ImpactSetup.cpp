@@ -6,6 +6,9 @@
 #include <string>
 #include <unistd.h>
 
+#include <algorithm>
+#include <vector>
+
 namespace craterkit {
 
 namespace {
@@ -62,7 +65,32 @@ void SphImpactSetup::validate() const {
     throw InputError("SPHImpact: SurfaceGravity must not be negative");
   if (particlesAcrossImpactor < 2 || particlesAcrossImpactor > 1000)
     throw InputError("SPHImpact: ParticlesAcrossImpactor must be in [2, 1000]");
+  if (!(coarsening >= 1.0 && coarsening <= 100.0))
+    throw InputError("SPHImpact: TargetCoarsening must be in [1, 100] (1: a uniform lattice; got " +
+                     std::to_string(coarsening) + ")");
+  if (coarsening > 1.0 && targetShape != Shape::Hemisphere)
+    throw InputError("SPHImpact: TargetCoarsening above 1 needs the hemispherical target");
 }
+
+namespace {
+// The graded target's shells beyond the lattice core: mid-radius, thickness (= spacing) and
+// particle count of each, out to `outer`.
+struct Shell {
+  double mid, thickness;
+  std::size_t count;
+};
+std::vector<Shell> gradedShells(double core, double dx, double coarsening, double outer) {
+  std::vector<Shell> out;
+  for (double r = core; r < outer;) {
+    const double t = std::min(coarsening * dx, dx * std::max(1.0, r / core));
+    const double mid = r + 0.5 * t;
+    const std::size_t n = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(2.0 * M_PI * mid * mid / (t * t))));
+    out.push_back(Shell{mid, t, n});
+    r += t;
+  }
+  return out;
+}
+} // namespace
 
 SphImpactProblem buildImpact(const SphImpactSetup& setup) {
   setup.validate();
@@ -86,10 +114,30 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
   out.impactorRadius = a;
   out.targetBulkDensity = rhoMatrix / tgt.distention;
 
+  // Graded: the lattice core within four impactor radii, shells beyond (to the container's
+  // outer face when there is one).
+  const bool graded = setup.coarsening > 1.0;
+  const double core = std::min(R, 4.0 * a);
+  std::vector<Shell> shells;
+  if (graded) {
+    shells = gradedShells(core, dx, setup.coarsening, R);
+    if (setup.container) {
+      // Three spacings of container at the spacing the target ends with.
+      const double t = shells.empty() ? dx : shells.back().thickness, start = shells.empty() ? core : shells.back().mid + 0.5 * t;
+      for (int k = 0; k < 3; ++k)
+        shells.push_back(Shell{start + (k + 0.5) * t, t, std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(2.0 * M_PI * std::pow(start + (k + 0.5) * t, 2) / (t * t))))});
+    }
+  }
+
   // Refuse what the machine cannot hold before allocating anything.
   const double volume = setup.targetShape == SphImpactSetup::Shape::Hemisphere ? 2.0 / 3.0 * M_PI * R * R * R
                                                                                : 4.0 * R * R * R;
-  const double estimate = volume / (dx * dx * dx) + 4.0 / 3.0 * M_PI * std::pow(0.5 * setup.particlesAcrossImpactor, 3);
+  double estimate = volume / (dx * dx * dx) + 4.0 / 3.0 * M_PI * std::pow(0.5 * setup.particlesAcrossImpactor, 3);
+  if (graded) {
+    estimate = 2.0 / 3.0 * M_PI * core * core * core / (dx * dx * dx) + 4.0 / 3.0 * M_PI * std::pow(0.5 * setup.particlesAcrossImpactor, 3);
+    for (const Shell& sh : shells)
+      estimate += static_cast<double>(sh.count);
+  }
   const double need = estimate * static_cast<double>(sphBytesPerParticle(2.5));
   const double have = static_cast<double>(physicalMemory());
   if (estimate > 1.2e8 || (have > 0.0 && need > setup.memoryLimitFraction * have))
@@ -134,7 +182,40 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
       return 0;
     return setup.container && std::fabs(x[0]) <= Rw && std::fabs(x[1]) <= Rw && x[2] >= -Rw ? 1 : -1;
   };
-  const int m = static_cast<int>(std::ceil((setup.container ? Rw : R) / dx));
+  if (graded) {
+    // The lattice core, then the shells: points spread evenly over each lower hemisphere
+    // (uniform in z is uniform in area), turned by the golden angle from point to point and by
+    // a different angle on every shell so that neighbouring shells do not line up.
+    const int mc = static_cast<int>(std::ceil(core / dx));
+    for (int k = 0; k < mc; ++k)
+      for (int j = -mc; j < mc; ++j)
+        for (int i = -mc; i < mc; ++i) {
+          const double x[3] = {(i + 0.5) * dx, (j + 0.5) * dx, -(k + 0.5) * dx};
+          if (x[0] * x[0] + x[1] * x[1] + x[2] * x[2] > core * core)
+            continue;
+          out.state.add(x, rest, mt, out.targetBulkDensity, 0.0, 1);
+          out.state.alpha.back() = tgt.distention;
+        }
+    const double golden = M_PI * (3.0 - std::sqrt(5.0));
+    double inner = core;
+    for (std::size_t k = 0; k < shells.size(); ++k) {
+      const Shell& sh = shells[k];
+      const double outer = inner + sh.thickness;
+      const int mat = sh.mid > R ? 2 : 1; // the container's shells last
+      const double volumeShare = 2.0 / 3.0 * M_PI * (outer * outer * outer - inner * inner * inner) / static_cast<double>(sh.count);
+      const double turn = golden * 7.0 * static_cast<double>(k);
+      for (std::size_t q = 0; q < sh.count; ++q) {
+        const double z = -(static_cast<double>(q) + 0.5) / static_cast<double>(sh.count);
+        const double rho = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = turn + golden * static_cast<double>(q);
+        const double x[3] = {sh.mid * rho * std::cos(phi), sh.mid * rho * std::sin(phi), sh.mid * z};
+        out.state.add(x, rest, out.targetBulkDensity * volumeShare, out.targetBulkDensity, 0.0, mat);
+        out.state.alpha.back() = tgt.distention;
+        out.containerParticles += mat == 2 ? 1 : 0;
+      }
+      inner = outer;
+    }
+  }
+  const int m = graded ? 0 : static_cast<int>(std::ceil((setup.container ? Rw : R) / dx));
   for (int pass = 0; pass < 2; ++pass) // the target first, then its container
     for (int k = 0; k < m; ++k)
       for (int j = -m; j < m; ++j)

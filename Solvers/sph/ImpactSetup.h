@@ -2,7 +2,8 @@
 // granular target under surface gravity (issue: SPHImpact; PHYSICS.md §2 and §4.1).
 //
 // Both bodies are cut from one cubic lattice of spacing dx = 2 a / ParticlesAcrossImpactor,
-// so every particle has the volume dx³; impactor particles share the impactor's mass exactly.
+// so every particle has the volume dx³ (unless the target is graded, see `coarsening`);
+// impactor particles share the impactor's mass exactly.
 // The target (a hemisphere of radius R, or a half-space block of half-width R and depth R)
 // has its surface at z = 0 with gravity along −z; the impactor touches the surface at the
 // origin, moving at ImpactSpeed at ImpactAngle from the vertical in the x–z plane.
@@ -35,6 +36,13 @@ struct SphImpactSetup {
   // placed after the target's; they stand for the far field of a half-space, which takes up
   // the momentum of the waves that reach it instead of letting a free target drift away.
   bool container = false;
+  // Graded resolution (hemispherical targets): 1 keeps the one lattice. Above 1, the lattice
+  // spacing dx holds only within four impactor radii of the impact point; beyond, the target
+  // is built of hemispherical shells whose spacing grows in proportion to the distance (the
+  // same number of particles on every shell) up to this multiple of dx, with each particle's
+  // mass set by its share of its shell's volume. Resolution goes where the shock and the
+  // excavation flow start, for a fraction of the particles of a uniform lattice.
+  double coarsening = 1.0;
   double memoryLimitFraction = 0.8;   // refuse set-ups that need more of the machine's memory
   void validate() const;
 };

@@ -267,3 +267,82 @@ TEST(SphImpact, ParticlesOutsideTheDomainFlyBallistically) {
   run(3.0, nearGap, farGap, v, z);
   EXPECT_NEAR(farGap, nearGap, 1e-9); // inside, the same pair behaves as the one at the origin
 }
+
+// A graded target: the lattice core within four impactor radii, shells coarsening with the
+// distance beyond. Its mass is the hemisphere's at the bulk density, its centre of mass on
+// the axis, each particle's nearest neighbour about one of its own spacings away (no clumps,
+// no gaps where the core meets the shells or shell meets shell), the spacing 1 at the core and
+// the coarsening at the rim, and far fewer particles than one lattice needs.
+TEST(SphImpact, GradedTargetKeepsTheMassAndCoarsensOutwards) {
+  SphImpactSetup s = sciSetup();
+  s.particlesAcrossImpactor = 6;
+  s.targetRadius = 0.5;
+  s.coarsening = 4.0;
+  s.container = true;
+  const SphImpactProblem g = buildImpact(s);
+  s.coarsening = 1.0;
+  const SphImpactProblem u = buildImpact(s);
+  const SphState& st = g.state;
+  const double dx = g.spacing, rho = g.targetBulkDensity;
+  double mass = 0.0, mx = 0.0, my = 0.0, outer = 0.0;
+  for (std::size_t i = 0; i < st.size(); ++i)
+    if (st.material[i] == 1) {
+      mass += st.mass[i];
+      mx += st.mass[i] * st.x[3 * i];
+      my += st.mass[i] * st.x[3 * i + 1];
+      outer = std::max(outer, std::sqrt(st.x[3 * i] * st.x[3 * i] + st.x[3 * i + 1] * st.x[3 * i + 1] + st.x[3 * i + 2] * st.x[3 * i + 2]));
+    }
+  // The shells end within one (coarse) spacing beyond the radius asked for.
+  EXPECT_GE(outer, s.targetRadius - 4.0 * dx);
+  EXPECT_LE(outer, s.targetRadius + 4.0 * dx);
+  // The target's outer face: the container's innermost shell less half its thickness (its
+  // particles' own spacing).
+  double rContainer = 1e300, tContainer = 0.0;
+  for (std::size_t i = 0; i < st.size(); ++i)
+    if (st.material[i] == 2) {
+      const double r = std::sqrt(st.x[3 * i] * st.x[3 * i] + st.x[3 * i + 1] * st.x[3 * i + 1] + st.x[3 * i + 2] * st.x[3 * i + 2]);
+      if (r < rContainer)
+        rContainer = r, tContainer = std::cbrt(st.mass[i] / rho);
+    }
+  const double rEnd = rContainer - 0.5 * tContainer;
+  const double expected = 2.0 / 3.0 * M_PI * rEnd * rEnd * rEnd * rho;
+  EXPECT_NEAR(mass, expected, 0.02 * expected);
+  EXPECT_LT(std::hypot(mx, my) / mass, 0.01 * s.targetRadius);
+  EXPECT_GT(g.containerParticles, 0u);
+  EXPECT_LT(st.size(), u.state.size() / 3); // graded: a fraction of the lattice's particles
+  // Nearest neighbours, for a sample, by brute force over all particles.
+  double smallestRatio = 1e300, largestRatio = 0.0, coreSpacing = 0.0, rimSpacing = 0.0;
+  for (std::size_t i = g.impactorParticles; i < st.size(); i += 37) {
+    double best = 1e300;
+    for (std::size_t j = g.impactorParticles; j < st.size(); ++j)
+      if (j != i) {
+        const double dxj = st.x[3 * j] - st.x[3 * i], dyj = st.x[3 * j + 1] - st.x[3 * i + 1], dzj = st.x[3 * j + 2] - st.x[3 * i + 2];
+        best = std::min(best, dxj * dxj + dyj * dyj + dzj * dzj);
+      }
+    const double own = std::cbrt(st.mass[i] / rho); // the particle's own spacing
+    smallestRatio = std::min(smallestRatio, std::sqrt(best) / own);
+    largestRatio = std::max(largestRatio, std::sqrt(best) / own);
+    const double r = std::sqrt(st.x[3 * i] * st.x[3 * i] + st.x[3 * i + 1] * st.x[3 * i + 1] + st.x[3 * i + 2] * st.x[3 * i + 2]);
+    if (r < 0.1)
+      coreSpacing = std::max(coreSpacing, own);
+    if (st.material[i] == 1 && r > 0.45)
+      rimSpacing = std::max(rimSpacing, own);
+  }
+  EXPECT_GT(smallestRatio, 0.35) << "clumped particles";
+  EXPECT_LT(largestRatio, 1.6) << "a gap";
+  EXPECT_NEAR(coreSpacing, dx, 1e-9 * dx);
+  EXPECT_GT(rimSpacing, 2.5 * dx); // 0.45 m / 0.15 m core = 3 dx
+  EXPECT_LT(rimSpacing, 4.6 * dx);
+
+  SphImpactSetup bad = sciSetup();
+  bad.coarsening = 0.5;
+  EXPECT_THROW(buildImpact(bad), InputError);
+  bad.coarsening = 2.0;
+  bad.targetShape = SphImpactSetup::Shape::HalfSpace;
+  try {
+    buildImpact(bad);
+    FAIL() << "a graded block was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("hemispherical"), std::string::npos) << e.what();
+  }
+}
