@@ -290,10 +290,10 @@ def main(argv):
     with open(os.path.join(args.output_dir, "report.md"), "a") as f:
         f.write(f"\n![hand-off]({os.path.basename(figure1)})\n\n![profile]({profile_png})\n")
         f.write(f"\n**Validation status.** {outcome} At the sizes two cores can afford, the pipeline "
-                "does not yet reproduce pi-scaling: the SPH stage resolves the impactor with a few "
-                "particles, and its crater keeps growing with resolution (benchmarks/README.md, "
-                "'What sets the SPH crater's size'). Read the numbers as a test of the pipeline, "
-                "not as a prediction.\n")
+                "does not yet reproduce pi-scaling: run alone to the late stage, the SPH stage makes "
+                "a crater 0.4-0.55 of it in every variant tried so far, and the cause is open "
+                "(benchmarks/README.md, 'What sets the SPH crater's size'). Read the numbers as a "
+                "test of the pipeline, not as a prediction.\n")
     if found:
         say(f"crater diameter {measures['diameter']:.3g} m ({measures['diameter'] / d_pi:.2f} x pi-scaling "
             f"{d_pi:.3g} m), rim diameter {measures['rim_diameter']:.3g} m, depth {measures['depth']:.3g} m")
