@@ -50,7 +50,10 @@ def main():
         key, sep, value = item.partition("=")
         if not sep:
             p.error(f"--set {item}: expected PROPERTY=VALUE")
-        extra[key] = float(value)
+        try:
+            extra[key] = float(value)
+        except ValueError:
+            extra[key] = value  # a string property such as MaterialDirectory
 
     simple = load_plugin()
     rho_imp = material_value(args.impactor_material, "rho0")
