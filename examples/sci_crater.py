@@ -290,10 +290,11 @@ def main(argv):
     with open(os.path.join(args.output_dir, "report.md"), "a") as f:
         f.write(f"\n![hand-off]({os.path.basename(figure1)})\n\n![profile]({profile_png})\n")
         f.write(f"\n**Validation status.** {outcome} At the sizes two cores can afford, the pipeline "
-                "does not yet reproduce pi-scaling: run alone to the late stage, the SPH stage makes "
-                "a crater 0.4-0.55 of it in every variant tried so far, and the cause is open "
-                "(benchmarks/README.md, 'What sets the SPH crater's size'). Read the numbers as a "
-                "test of the pipeline, not as a prediction.\n")
+                "does not yet reproduce pi-scaling. Run alone to the late stage, the SPH stage now "
+                "comes close to it (0.9 of pi-scaling at g = 1000 m/s^2 since the regolith's shear "
+                "modulus is the porous bulk's; benchmarks/README.md, 'What sets the SPH crater's "
+                "size'), but a hand-off after 1 ms into a coarse bed does not carry the crater on. "
+                "Read the numbers as a test of the pipeline, not as a prediction.\n")
     if found:
         say(f"crater diameter {measures['diameter']:.3g} m ({measures['diameter'] / d_pi:.2f} x pi-scaling "
             f"{d_pi:.3g} m), rim diameter {measures['rim_diameter']:.3g} m, depth {measures['depth']:.3g} m")
