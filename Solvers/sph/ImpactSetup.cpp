@@ -79,13 +79,15 @@ struct Shell {
   double mid, thickness;
   std::size_t count;
 };
+// A shell of thickness t holds points t apart over its hemisphere of radius `mid`.
+Shell shellAt(double mid, double t) {
+  return Shell{mid, t, std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(2.0 * M_PI * mid * mid / (t * t))))};
+}
 std::vector<Shell> gradedShells(double core, double dx, double coarsening, double outer) {
   std::vector<Shell> out;
   for (double r = core; r < outer;) {
     const double t = std::min(coarsening * dx, dx * std::max(1.0, r / core));
-    const double mid = r + 0.5 * t;
-    const std::size_t n = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(2.0 * M_PI * mid * mid / (t * t))));
-    out.push_back(Shell{mid, t, n});
+    out.push_back(shellAt(r + 0.5 * t, t));
     r += t;
   }
   return out;
@@ -119,13 +121,15 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
   const bool graded = setup.coarsening > 1.0;
   const double core = std::min(R, 4.0 * a);
   std::vector<Shell> shells;
+  std::size_t targetShells = 0; // the rest are the container's
   if (graded) {
     shells = gradedShells(core, dx, setup.coarsening, R);
+    targetShells = shells.size();
     if (setup.container) {
       // Three spacings of container at the spacing the target ends with.
       const double t = shells.empty() ? dx : shells.back().thickness, start = shells.empty() ? core : shells.back().mid + 0.5 * t;
       for (int k = 0; k < 3; ++k)
-        shells.push_back(Shell{start + (k + 0.5) * t, t, std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(2.0 * M_PI * std::pow(start + (k + 0.5) * t, 2) / (t * t))))});
+        shells.push_back(shellAt(start + (k + 0.5) * t, t));
     }
   }
 
@@ -201,7 +205,7 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
     for (std::size_t k = 0; k < shells.size(); ++k) {
       const Shell& sh = shells[k];
       const double outer = inner + sh.thickness;
-      const int mat = sh.mid > R ? 2 : 1; // the container's shells last
+      const int mat = k < targetShells ? 1 : 2; // the container's shells last
       const double volumeShare = 2.0 / 3.0 * M_PI * (outer * outer * outer - inner * inner * inner) / static_cast<double>(sh.count);
       const double turn = golden * 7.0 * static_cast<double>(k);
       for (std::size_t q = 0; q < sh.count; ++q) {
