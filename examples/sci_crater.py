@@ -291,9 +291,10 @@ def main(argv):
         f.write(f"\n![hand-off]({os.path.basename(figure1)})\n\n![profile]({profile_png})\n")
         f.write(f"\n**Validation status.** {outcome} At the sizes two cores can afford, the pipeline "
                 "does not yet reproduce pi-scaling. Run alone to the late stage, the SPH stage now "
-                "comes close to it (0.9 of pi-scaling at g = 1000 m/s^2 since the regolith's shear "
-                "modulus is the porous bulk's; benchmarks/README.md, 'What sets the SPH crater's "
-                "size'), but a hand-off after 1 ms into a coarse bed does not carry the crater on. "
+                "comes closer to it (a transient crater 0.65-0.9 of pi-scaling at g = 1000 m/s^2 since "
+                "the regolith's shear modulus is the porous bulk's; benchmarks/README.md, 'What sets "
+                "the SPH crater's size'), but a hand-off after 1 ms into a coarse bed does not carry "
+                "the crater on. "
                 "Read the numbers as a test of the pipeline, not as a prediction.\n")
     if found:
         say(f"crater diameter {measures['diameter']:.3g} m ({measures['diameter'] / d_pi:.2f} x pi-scaling "
