@@ -1,16 +1,23 @@
-// Future-event queue for event-driven MD: one pending event time per disk, the earliest first.
+// Future-event queue for event-driven MD: at most one pending event per disk, earliest first.
 //
 // A bounded priority queue after Paul (2007, J. Comput. Phys. 221:615), as DynamO uses it:
 // time is cut into buckets of equal width; a ring of buckets covering the near future holds
-// unsorted doubly linked lists, later events wait in an overflow list, and only the current
-// bucket is kept sorted, in a small binary heap. Scheduling an event is O(1) and touches a
-// few cache lines, where a binary tree over all disks walks log2 N of them. The bucket width
-// adapts: it is halved or doubled whenever a turn of the ring sees far more or far fewer
-// events than buckets.
+// unsorted lists, later events wait in an overflow list, and only the current bucket is kept
+// sorted, in a small binary heap. The bucket width adapts: it is quartered or quadrupled
+// whenever a turn of the ring sees far more or far fewer events than buckets.
 //
-// Ordering is exact: the earliest time wins, ties go to the lower disk index.
+// The lists hold the events themselves, not disk indices, and nothing is ever unlinked: a
+// disk's new event is appended with the disk's next generation number, and an entry whose
+// generation is no longer the disk's is dropped when it is reached. Scheduling is an append,
+// draining a bucket a sequential read, and the heap compares times it holds, so the queue
+// touches no other disk's record (the doubly linked lists it replaced missed the cache on
+// both neighbours of every disk they moved).
+//
+// Ordering is exact: the earliest time wins, ties go to the lower disk index. Payload is any
+// event type with a member `double t`.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -19,46 +26,68 @@
 
 namespace craterkit {
 
-class EventQueue {
+template <class Payload> class EventQueue {
 public:
-  // n disks, their event times (infinity: none), and the current time.
-  void reset(std::size_t n, const double* times, double now) {
-    n_ = n;
-    e_.assign(n, Entry{});
-    for (std::size_t i = 0; i < n; ++i)
-      e_[i].key = times[i];
-    // Width: events spread over their mean horizon, about two per bucket.
-    double sum = 0.0;
-    std::size_t finite = 0;
-    for (std::size_t i = 0; i < n; ++i)
-      if (e_[i].key < kInf) {
-        sum += e_[i].key - now;
-        ++finite;
-      }
+  struct Item {
+    Payload event;
+    std::uint32_t disk, gen;
+  };
+
+  // n disks without events at time `now`.
+  void reset(std::size_t n, double now) {
+    gen_.assign(n, 0);
     buckets_ = 64;
     while (buckets_ < n)
       buckets_ *= 2;
-    const double horizon = finite ? std::max(sum / finite, 1e-300) * 4.0 : 1.0;
-    rebuild(horizon / buckets_, now);
+    head_.assign(buckets_, -1);
+    pool_.clear();
+    free_ = -1;
+    waiting_.clear();
+    heap_.clear();
+    listed_ = 0;
+    width_ = 1.0;
+    current_ = bucketOf(now);
+    turnStart_ = current_;
+    popped_ = 0;
   }
 
-  // Disk i's event moved to time t.
-  void update(std::size_t i, double t) {
-    remove(i);
-    e_[i].key = t;
-    insert(i);
+  // Sizes the buckets from the pending events: about two per bucket over their mean horizon.
+  void tune(double now) {
+    double sum = 0.0;
+    std::size_t count = 0;
+    forEachValid([&](const Item& it) {
+      sum += it.event.t - now;
+      ++count;
+    });
+    const double horizon = count ? std::max(sum / static_cast<double>(count), 1e-300) * 4.0 : 1.0;
+    rebuild(horizon / static_cast<double>(buckets_), now);
   }
 
-  // The disk with the earliest event, or n if there is none.
-  std::size_t top() {
-    while (heap_.empty()) {
+  // Disk i's next event is e (e.t infinite: none); its previous one is void.
+  void update(std::size_t i, const Payload& e) {
+    const std::uint32_t g = ++gen_[i];
+    if (e.t < kInf)
+      insert(Item{e, static_cast<std::uint32_t>(i), g});
+  }
+
+  // The earliest event, or nullptr if there is none. Valid until the next call of any member.
+  const Item* top() {
+    while (true) {
+      while (!heap_.empty()) {
+        if (valid(heap_.front()))
+          return &heap_.front();
+        heapPop();
+      }
       if (listed_ == 0) {
-        if (overflow_ == 0)
-          return n_;
-        // Nothing in the ring: jump to the earliest waiting event.
+        // Nothing in the ring: jump to the earliest waiting event, if any is still valid.
         double tmin = kInf;
-        for (std::int32_t k = head_[buckets_]; k >= 0; k = e_[k].next)
-          tmin = std::min(tmin, e_[k].key);
+        for (const Item& it : waiting_)
+          if (valid(it))
+            tmin = std::min(tmin, it.event.t);
+        if (!(tmin < kInf)) {
+          waiting_.clear();
+          return nullptr;
+        }
         current_ = bucketOf(tmin) - 1;
         turnStart_ = current_;
         refill();
@@ -71,183 +100,141 @@ public:
         popped_ = 0;
         turnStart_ = current_;
         if (seen > 16 * buckets_ || seen * 8 < buckets_) {
-          const double factor = seen > 16 * buckets_ ? 0.25 : 4.0;
-          rebuild(width_ * factor, static_cast<double>(current_) * width_);
+          rebuild(width_ * (seen > 16 * buckets_ ? 0.25 : 4.0), static_cast<double>(current_) * width_);
           continue;
         }
         refill();
       }
-      // Move the current bucket's list into the heap.
-      const std::size_t slot = static_cast<std::size_t>(current_ % static_cast<std::int64_t>(buckets_));
-      for (std::int32_t k = head_[slot]; k >= 0;) {
-        const std::int32_t following = e_[k].next;
-        e_[k].where = kNowhere;
+      // The current bucket's valid events go into the heap.
+      std::int32_t& head = head_[slotOf(current_)];
+      for (std::int32_t k = head; k >= 0;) {
+        Node& node = pool_[static_cast<std::size_t>(k)];
+        const std::int32_t following = node.next;
+        if (valid(node.item))
+          heapPush(node.item);
+        node.next = free_;
+        free_ = k;
         --listed_;
-        heapPush(static_cast<std::size_t>(k));
         k = following;
       }
-      head_[slot] = -1;
+      head = -1;
     }
-    return heap_[0];
   }
 
-  // Call after the event of top() has been taken (for the width adaptation).
-  void countPop() { ++popped_; }
+  // Removes the event top() returned.
+  void pop() {
+    heapPop();
+    ++popped_;
+  }
 
 private:
   static constexpr double kInf = std::numeric_limits<double>::infinity();
-  static constexpr std::int32_t kNowhere = -3, kHeap = -2;
+
+  bool valid(const Item& it) const { return gen_[it.disk] == it.gen; }
 
   std::int64_t bucketOf(double t) const {
     const double b = std::floor(t / width_);
     return b > 4e18 ? std::numeric_limits<std::int64_t>::max() / 2 : static_cast<std::int64_t>(b);
   }
+  std::size_t slotOf(std::int64_t b) const {
+    return static_cast<std::size_t>(b & static_cast<std::int64_t>(buckets_ - 1)); // buckets_ is a power of 2
+  }
+
+  template <class F> void forEachValid(F&& f) const {
+    for (const Item& it : heap_)
+      if (valid(it))
+        f(it);
+    for (std::int32_t h : head_)
+      for (std::int32_t k = h; k >= 0; k = pool_[static_cast<std::size_t>(k)].next)
+        if (valid(pool_[static_cast<std::size_t>(k)].item))
+          f(pool_[static_cast<std::size_t>(k)].item);
+    for (const Item& it : waiting_)
+      if (valid(it))
+        f(it);
+  }
 
   void rebuild(double width, double now) {
+    std::vector<Item> all;
+    forEachValid([&](const Item& it) { all.push_back(it); });
     width_ = width;
     current_ = bucketOf(now);
     turnStart_ = current_;
     popped_ = 0;
-    head_.assign(buckets_ + 1, -1); // the last list is the overflow
+    head_.assign(buckets_, -1);
+    pool_.clear();
+    free_ = -1;
+    waiting_.clear();
     heap_.clear();
-    listed_ = overflow_ = 0;
-    for (std::size_t i = 0; i < n_; ++i) {
-      e_[i].where = kNowhere;
-      e_[i].heapPos = -1;
-    }
-    for (std::size_t i = 0; i < n_; ++i)
-      insert(i);
+    listed_ = 0;
+    for (const Item& it : all)
+      insert(it);
   }
 
-  // Waiting events that are now within the ring move into it.
+  // Waiting events that are now within the ring move into it; void ones are dropped.
   void refill() {
-    for (std::int32_t k = head_[buckets_]; k >= 0;) {
-      const std::int32_t following = e_[k].next;
-      if (bucketOf(e_[k].key) < current_ + static_cast<std::int64_t>(buckets_)) {
-        unlink(static_cast<std::size_t>(k));
-        --overflow_;
-        insert(static_cast<std::size_t>(k));
-      }
-      k = following;
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < waiting_.size(); ++k) {
+      const Item it = waiting_[k];
+      if (!valid(it))
+        continue;
+      if (bucketOf(it.event.t) < current_ + static_cast<std::int64_t>(buckets_))
+        insert(it);
+      else
+        waiting_[kept++] = it;
     }
+    waiting_.resize(kept);
   }
 
-  void insert(std::size_t i) {
-    const double t = e_[i].key;
-    if (!(t < kInf))
-      return;
-    const std::int64_t b = bucketOf(t);
+  void insert(const Item& it) {
+    const std::int64_t b = bucketOf(it.event.t);
     if (b <= current_) {
-      heapPush(i);
+      heapPush(it);
     } else if (b < current_ + static_cast<std::int64_t>(buckets_)) {
-      link(i, static_cast<std::size_t>(b % static_cast<std::int64_t>(buckets_)));
+      std::int32_t k = free_;
+      if (k >= 0) {
+        free_ = pool_[static_cast<std::size_t>(k)].next;
+      } else {
+        k = static_cast<std::int32_t>(pool_.size());
+        pool_.emplace_back();
+      }
+      std::int32_t& head = head_[slotOf(b)];
+      pool_[static_cast<std::size_t>(k)] = Node{it, head};
+      head = k;
       ++listed_;
     } else {
-      link(i, buckets_);
-      ++overflow_;
+      waiting_.push_back(it);
     }
   }
 
-  void remove(std::size_t i) {
-    const std::int32_t w = e_[i].where;
-    if (w == kNowhere)
-      return;
-    if (w == kHeap) {
-      heapErase(i);
-      return;
-    }
-    unlink(i);
-    if (static_cast<std::size_t>(w) == buckets_)
-      --overflow_;
-    else
-      --listed_;
+  // A min-heap on (time, disk).
+  static bool later(const Item& a, const Item& b) {
+    return a.event.t > b.event.t || (a.event.t == b.event.t && a.disk > b.disk);
   }
-
-  void link(std::size_t i, std::size_t slot) {
-    e_[i].where = static_cast<std::int32_t>(slot);
-    e_[i].prev = -1;
-    e_[i].next = head_[slot];
-    if (head_[slot] >= 0)
-      e_[head_[slot]].prev = static_cast<std::int32_t>(i);
-    head_[slot] = static_cast<std::int32_t>(i);
+  void heapPush(const Item& it) {
+    heap_.push_back(it);
+    std::push_heap(heap_.begin(), heap_.end(), later);
   }
-
-  void unlink(std::size_t i) {
-    const std::int32_t p = e_[i].prev, q = e_[i].next;
-    if (p >= 0)
-      e_[p].next = q;
-    else
-      head_[static_cast<std::size_t>(e_[i].where)] = q;
-    if (q >= 0)
-      e_[q].prev = p;
-    e_[i].where = kNowhere;
-  }
-
-  bool before(std::uint32_t a, std::uint32_t b) const {
-    return e_[a].key < e_[b].key || (e_[a].key == e_[b].key && a < b);
-  }
-  void place(std::size_t pos, std::uint32_t i) {
-    heap_[pos] = i;
-    e_[i].heapPos = static_cast<std::int32_t>(pos);
-  }
-  void heapPush(std::size_t i) {
-    e_[i].where = kHeap;
-    heap_.push_back(static_cast<std::uint32_t>(i));
-    siftUp(heap_.size() - 1);
-  }
-  void heapErase(std::size_t i) {
-    const std::size_t pos = static_cast<std::size_t>(e_[i].heapPos);
-    const std::uint32_t last = heap_.back();
+  void heapPop() {
+    std::pop_heap(heap_.begin(), heap_.end(), later);
     heap_.pop_back();
-    e_[i].where = kNowhere;
-    e_[i].heapPos = -1;
-    if (pos < heap_.size()) {
-      place(pos, last);
-      siftUp(pos);
-      siftDown(static_cast<std::size_t>(e_[last].heapPos));
-    }
-  }
-  void siftUp(std::size_t pos) {
-    const std::uint32_t i = heap_[pos];
-    while (pos > 0) {
-      const std::size_t parent = (pos - 1) / 2;
-      if (!before(i, heap_[parent]))
-        break;
-      place(pos, heap_[parent]);
-      pos = parent;
-    }
-    place(pos, i);
-  }
-  void siftDown(std::size_t pos) {
-    const std::uint32_t i = heap_[pos];
-    const std::size_t size = heap_.size();
-    while (true) {
-      std::size_t child = 2 * pos + 1;
-      if (child >= size)
-        break;
-      if (child + 1 < size && before(heap_[child + 1], heap_[child]))
-        ++child;
-      if (!before(heap_[child], i))
-        break;
-      place(pos, heap_[child]);
-      pos = child;
-    }
-    place(pos, i);
   }
 
-  std::size_t n_ = 0, buckets_ = 64;
+  std::size_t buckets_ = 64, listed_ = 0;
   double width_ = 1.0;
   std::int64_t current_ = 0, turnStart_ = 0;
   std::uint64_t popped_ = 0;
-  std::size_t listed_ = 0, overflow_ = 0;
-  // Everything the queue keeps per disk, in one place (one cache miss per disk touched).
-  struct Entry {
-    double key = kInf;
-    std::int32_t prev = -1, next = -1, where = kNowhere, heapPos = -1;
+  std::vector<std::uint32_t> gen_;
+  // The ring's lists: singly linked nodes in a pool with a free list (recently freed nodes,
+  // still in cache, are reused first).
+  struct Node {
+    Item item;
+    std::int32_t next;
   };
-  std::vector<Entry> e_;
+  std::vector<Node> pool_;
+  std::int32_t free_ = -1;
   std::vector<std::int32_t> head_;
-  std::vector<std::uint32_t> heap_;
+  std::vector<Item> waiting_; // beyond the ring
+  std::vector<Item> heap_;
 };
 
 } // namespace craterkit

@@ -157,7 +157,6 @@ HardDiskSystem::HardDiskSystem(const HardDisks& disks, const HardDiskParams& par
     insertInCell(i, cx, cy);
   }
   lastCollision_.assign(n, -kInf);
-  next_.assign(n + 1, Event{kInf, 0, EventType::None, 0});
   pairBest_.assign(n, Event{kInf, 0, EventType::None, 0});
 
   // Overlapping input is an error: the dynamics of hard disks is undefined for it.
@@ -388,6 +387,10 @@ void HardDiskSystem::predict(std::size_t i) {
     const Hot& a = h_[i];
     const double g = p_.gravity, now = time_, W = p_.width, H = p_.height;
     const bool px = p_.periodicX, py = p_.periodicY;
+    // The first disk of each of the 3x3 cells, their records requested together (most cells
+    // hold zero or one disk, so this is most of the loads a prediction makes).
+    std::int32_t first[9];
+    int cells = 0;
     for (long dy = -1; dy <= 1; ++dy) {
       long ky = cy + dy;
       if (ky < 0 || ky >= ny) {
@@ -402,36 +405,43 @@ void HardDiskSystem::predict(std::size_t i) {
             continue;
           kx = kx < 0 ? nx - 1 : 0;
         }
-        for (std::int32_t k = head_[static_cast<std::size_t>(ky * nx + kx)]; k >= 0;) {
-          const std::size_t j = static_cast<std::size_t>(k);
-          const Hot& o = h_[j];
-          k = o.next;
-          if (j == i || isBig_[j])
-            continue;
-          const double dtj = now - o.t;
-          const double vyj = o.vy - g * dtj;
-          const double ux = o.vx - a.vx, uy = vyj - a.vy;
-          double rx = o.x + o.vx * dtj - a.x;
-          double ry = o.y + (o.vy - 0.5 * g * dtj) * dtj - a.y;
-          if (px)
-            rx = minimumImage(rx, W);
-          if (py)
-            ry = minimumImage(ry, H);
-          const double b = rx * ux + ry * uy;
-          if (b >= 0.0)
-            continue; // receding (a >= 0 without growth)
-          const double sigma = a.r + o.r;
-          const double c = rx * rx + ry * ry - sigma * sigma;
-          double tau = 0.0;
-          if (c > 0.0) {
-            const double uu = ux * ux + uy * uy, disc = b * b - uu * c;
-            if (disc < 0.0)
-              continue;
-            tau = c / (-b + std::sqrt(disc));
-          }
-          if (now + tau < best.t)
-            best = Event{now + tau, static_cast<std::uint32_t>(j), EventType::Pair, o.count};
+        const std::int32_t k = head_[static_cast<std::size_t>(ky * nx + kx)];
+        if (k >= 0) {
+          __builtin_prefetch(&h_[static_cast<std::size_t>(k)]);
+          first[cells++] = k;
         }
+      }
+    }
+    for (int c = 0; c < cells; ++c) {
+      for (std::int32_t k = first[c]; k >= 0;) {
+        const std::size_t j = static_cast<std::size_t>(k);
+        const Hot& o = h_[j];
+        k = o.next;
+        if (j == i || isBig_[j])
+          continue;
+        const double dtj = now - o.t;
+        const double vyj = o.vy - g * dtj;
+        const double ux = o.vx - a.vx, uy = vyj - a.vy;
+        double rx = o.x + o.vx * dtj - a.x;
+        double ry = o.y + (o.vy - 0.5 * g * dtj) * dtj - a.y;
+        if (px)
+          rx = minimumImage(rx, W);
+        if (py)
+          ry = minimumImage(ry, H);
+        const double b = rx * ux + ry * uy;
+        if (b >= 0.0)
+          continue; // receding (a >= 0 without growth)
+        const double sigma = a.r + o.r;
+        const double c2 = rx * rx + ry * ry - sigma * sigma;
+        double tau = 0.0;
+        if (c2 > 0.0) {
+          const double uu = ux * ux + uy * uy, disc = b * b - uu * c2;
+          if (disc < 0.0)
+            continue;
+          tau = c2 / (-b + std::sqrt(disc));
+        }
+        if (now + tau < best.t)
+          best = Event{now + tau, static_cast<std::uint32_t>(j), EventType::Pair, o.count};
       }
     }
   } else {
@@ -446,8 +456,7 @@ void HardDiskSystem::predict(std::size_t i) {
   pairBest_[i] = best;
   cellEvent(i, best);
   wallEvent(i, best);
-  next_[i] = best;
-  schedule(i);
+  schedule(i, best);
 }
 
 void HardDiskSystem::predictAfterCrossing(std::size_t i, std::uint32_t direction) {
@@ -487,23 +496,17 @@ void HardDiskSystem::predictAfterCrossing(std::size_t i, std::uint32_t direction
   pairBest_[i] = best;
   cellEvent(i, best);
   wallEvent(i, best);
-  next_[i] = best;
-  schedule(i);
+  schedule(i, best);
 }
-
-void HardDiskSystem::schedule(std::size_t i) { queue_.update(i, next_[i].t); }
 
 void HardDiskSystem::predictAll() {
   const std::size_t n = h_.size();
   for (std::size_t i = 0; i < n; ++i)
     stream(i);
-  std::vector<double> times(n, kInf);
-  queue_.reset(n, times.data(), time_);
+  queue_.reset(n, time_);
   for (std::size_t i = 0; i < n; ++i)
     predict(i);
-  for (std::size_t i = 0; i < n; ++i)
-    times[i] = next_[i].t;
-  queue_.reset(n, times.data(), time_); // again, to size the buckets from the real events
+  queue_.tune(time_); // size the buckets from the real events
 }
 
 void HardDiskSystem::collide(std::size_t i, std::size_t j) {
@@ -603,13 +606,12 @@ void HardDiskSystem::crossCell(std::size_t i, std::uint32_t direction) {
 }
 
 bool HardDiskSystem::step(double limit) {
-  const std::size_t i = queue_.top();
-  if (i >= h_.size())
+  const auto* top = queue_.top();
+  if (!top || !(top->event.t < limit))
     return false;
-  const Event ev = next_[i];
-  if (!(ev.t < limit))
-    return false;
-  queue_.countPop();
+  const std::size_t i = top->disk;
+  const Event ev = top->event;
+  queue_.pop();
   time_ = std::max(time_, ev.t);
   switch (ev.type) {
   case EventType::Pair:

@@ -132,7 +132,7 @@ private:
   bool checkOverlaps_ = false;
   void insertInCell(std::size_t i, std::size_t cx, std::size_t cy);
   void removeFromCell(std::size_t i);
-  void schedule(std::size_t i); // hands next_[i] to the queue
+  void schedule(std::size_t i, const Event& e) { queue_.update(i, e); }
   void predictAll();
   double exitTime(double pos, double vel, double acc, double lo, double hi, int& side) const;
 
@@ -149,9 +149,8 @@ private:
   HardDiskParams p_;
   double time_ = 0.0;
   std::vector<double> lastCollision_; // for the TC model
-  std::vector<Event> next_;
-  std::vector<Event> pairBest_; // best pair event of each disk's last scan
-  EventQueue queue_; // the future-event list over next_
+  std::vector<Event> pairBest_;       // best pair event of each disk's last scan
+  EventQueue<Event> queue_;           // the future-event list: each disk's next event
   // Cell grid with intrusive doubly linked lists.
   std::size_t nx_ = 1, ny_ = 1;
   double cellW_ = 1.0, cellH_ = 1.0;

@@ -365,8 +365,14 @@ TEST(EventQueue, AlwaysYieldsTheEarliestEventLowestIndexFirst) {
   std::vector<double> times(n);
   for (double& t : times)
     t = rng.uniform(0.0, 1.0);
-  EventQueue q;
-  q.reset(n, times.data(), 0.0);
+  struct Timed {
+    double t;
+  };
+  EventQueue<Timed> q;
+  q.reset(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    q.update(i, Timed{times[i]});
+  q.tune(0.0);
   double now = 0.0;
   int checked = 0;
   for (int step = 0; step < 200000; ++step) {
@@ -374,11 +380,13 @@ TEST(EventQueue, AlwaysYieldsTheEarliestEventLowestIndexFirst) {
     for (std::size_t i = 0; i < n; ++i)
       if (times[i] < kInf && (expected == n || times[i] < times[expected]))
         expected = i;
-    const std::size_t got = q.top();
+    const auto* top = q.top();
+    const std::size_t got = top ? top->disk : n;
     ASSERT_EQ(got, expected) << "step " << step;
     if (got == n)
       break;
-    q.countPop();
+    ASSERT_EQ(top->event.t, times[got]);
+    q.pop();
     now = times[got];
     // The disk's next event: usually soon, sometimes a tie, sometimes far away or none.
     const double u = rng.uniform();
@@ -392,14 +400,14 @@ TEST(EventQueue, AlwaysYieldsTheEarliestEventLowestIndexFirst) {
     else if (step > 100000)
       next = now + rng.uniform(0.0, 1e-5); // a burst: the ring must narrow
     times[got] = next;
-    q.update(got, next);
+    q.update(got, Timed{next});
     // Another disk's event changes too (and disks without one get one back).
     const std::size_t other = static_cast<std::size_t>(rng.uniform() * n);
     const std::size_t third = static_cast<std::size_t>(rng.uniform() * n);
     times[other] = now + rng.uniform(0.0, 0.02);
     if (rng.uniform() < 0.2 && times[third] < kInf)
       times[other] = times[third]; // an exact tie between two disks
-    q.update(other, times[other]);
+    q.update(other, Timed{times[other]});
     ++checked;
   }
   EXPECT_EQ(checked, 200000);
