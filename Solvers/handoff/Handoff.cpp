@@ -371,8 +371,25 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
         const Eigen::Vector3d ev = eig.eigenvalues(); // ascending
         if (ev(0) > 1e-6 * ev(2)) { // the neighbours span 3D: the fit is well posed
           const Eigen::Matrix3d G = B * A.inverse();
-          v = vbar + G * (x - xbar);
-          omega = 0.5 * Eigen::Vector3d(G(2, 1) - G(1, 2), G(0, 2) - G(2, 0), G(1, 0) - G(0, 1));
+          // Limited as Barth & Jespersen (1989) limit a reconstruction: no velocity component
+          // beyond the range of the neighbours'. A linear field inside their hull is never
+          // limited (rigid motions stay exact); an extrapolation past one-sided neighbours (a
+          // grain at a cavity wall or in a thin sheet) would otherwise invent speeds many
+          // times the fastest SPH particle's.
+          Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+          for (const auto& nk : near) {
+            lo = lo.cwiseMin(vec(sph.v, compact[nk.first]));
+            hi = hi.cwiseMax(vec(sph.v, compact[nk.first]));
+          }
+          const Eigen::Vector3d dv = G * (x - xbar);
+          double limit = 1.0;
+          for (int a = 0; a < 3; ++a) {
+            const double room = dv(a) > 0.0 ? hi(a) - vbar(a) : vbar(a) - lo(a);
+            if (std::abs(dv(a)) > room)
+              limit = std::min(limit, std::max(0.0, room) / std::abs(dv(a)));
+          }
+          v = vbar + limit * dv;
+          omega = 0.5 * limit * Eigen::Vector3d(G(2, 1) - G(1, 2), G(0, 2) - G(2, 0), G(1, 0) - G(0, 1));
         }
       }
     }

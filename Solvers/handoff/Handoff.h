@@ -9,6 +9,8 @@
 //    is the cavity the SPH stage opened. Bed particles outside that region are kept as they are.
 // 4. Map velocities onto the kept bed particles inside the region: a kernel-weighted linear
 //    fit of the compact SPH velocities within one support radius (exact for rigid motions;
+//    limited, as Barth & Jespersen limit a reconstruction, to the range of the neighbours'
+//    velocities, so that a grain beyond one-sided neighbours gets no invented speed;
 //    Shepard's average where the fit is ill-posed, the nearest SPH particle's where none is in
 //    reach); spin ω = ½ ∇×v from the same fit. Then
 //    correct so the mapped particles carry exactly the compact SPH material's linear and
