@@ -115,21 +115,29 @@ int vtkCraterKitImpactHandoff::RequestData(
     p.alphaRadius = this->Alpha;
     p.minNeighbours = this->MinNeighbours;
     p.ejectaDensity = this->EjectaDensity;
-    p.groupEjecta = this->EjectaParticles == GROUPED_TO_BED_SIZE;
+    // Dropped ejecta leave only the curtain to become particles; it lands on the bed, so it
+    // comes as grains of the bed's size (SPH-particle-sized ones would set the DEM step).
+    p.groupEjecta = this->EjectaParticles == GROUPED_TO_BED_SIZE || this->EjectaParticles == DROPPED;
     p.dropEjecta = this->EjectaParticles == DROPPED;
     p.curtainAsParticles = this->CurtainAsParticles != 0;
-    // Ejecta stay inside the bed's container (GranularBed's field data).
+    // Ejecta stay inside the bed's container (GranularBed's field data); with
+    // DropEjectaLandingOutside, what comes down outside its footprint leaves the domain.
     vtkFieldData* bfd = bedIn->GetFieldData();
     const std::string container = b::fieldString(bfd, "ContainerType");
+    const bool dropOutside = this->DropEjectaLandingOutside != 0;
     if (container == "Bowl")
     {
       const double R = b::fieldScalar(bfd, "ContainerRadius", 0.0);
       if (R > 0.0)
+      {
         p.allowed = [R](const double* x, double rad) { // the bowl and the cylinder above its rim
           const double horizontal = std::sqrt(x[0] * x[0] + x[1] * x[1]);
           return horizontal + rad <= R &&
             (x[2] > 0.0 || std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) + rad <= R);
         };
+        if (dropOutside)
+          p.landsInside = [R](double x, double y) { return x * x + y * y <= R * R; };
+      }
     }
     else if (container == "Box")
     {
@@ -142,8 +150,15 @@ int vtkCraterKitImpactHandoff::RequestData(
           return std::abs(x[0]) + rad <= 0.5 * L[0] && std::abs(x[1]) + rad <= 0.5 * L[1] &&
             x[2] - rad >= -L[2];
         };
+        if (dropOutside)
+          p.landsInside = [L](double x, double y) {
+            return std::abs(x) <= 0.5 * L[0] && std::abs(y) <= 0.5 * L[1];
+          };
       }
     }
+    if (vtkDataArray* g = sphIn->GetFieldData()->GetArray("Gravity"))
+      if (g->GetNumberOfComponents() == 3)
+        p.gravity = std::max(0.0, -g->GetComponent(0, 2)); // along -z
     r = handoff(s, bed, region, p);
   });
   if (!ok)
@@ -172,6 +187,8 @@ int vtkCraterKitImpactHandoff::RequestData(
   totals("SPHCompact", r.sphCompact);
   totals("SPHEjecta", r.sphEjecta);
   totals("SPHCurtain", r.sphCurtain);
+  totals("SPHEscaped", r.sphEscaped);
+  b::addField(fd, "EscapedCount", static_cast<double>(r.escapedCount));
   totals("DEMMappedBeforeCorrection", r.demBefore);
   totals("DEMMapped", r.demMapped);
   totals("DEMEjecta", r.demEjecta);
@@ -218,4 +235,5 @@ void vtkCraterKitImpactHandoff::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EjectaDensity: " << this->EjectaDensity << "\n";
   os << indent << "EjectaParticles: " << this->EjectaParticles << "\n";
   os << indent << "CurtainAsParticles: " << this->CurtainAsParticles << "\n";
+  os << indent << "DropEjectaLandingOutside: " << this->DropEjectaLandingOutside << "\n";
 }

@@ -42,6 +42,9 @@ public:
   vtkGetMacro(EjectaParticles, int);
   vtkSetMacro(CurtainAsParticles, int);
   vtkGetMacro(CurtainAsParticles, int);
+  // Ejecta and curtain whose ballistic flight comes down outside the container leave the domain.
+  vtkSetMacro(DropEjectaLandingOutside, int);
+  vtkGetMacro(DropEjectaLandingOutside, int);
 
 protected:
   vtkCraterKitImpactHandoff();
@@ -62,6 +65,7 @@ private:
   double EjectaDensity = 0.0;
   int EjectaParticles = ONE_PER_SPH_PARTICLE;
   int CurtainAsParticles = 1;
+  int DropEjectaLandingOutside = 1;
 };
 
 #endif

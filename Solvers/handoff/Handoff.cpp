@@ -71,6 +71,8 @@ void HandoffParams::validate() const {
     throw InputError("ImpactHandoff: the neighbour count must be at least 1");
   if (!(ejectaDensity >= 0.0) || !std::isfinite(ejectaDensity))
     throw InputError("ImpactHandoff: the ejecta grain density must not be negative (0: the bed's)");
+  if (!(gravity >= 0.0) || !std::isfinite(gravity))
+    throw InputError("ImpactHandoff: the gravity for ballistic landing must be finite and not negative");
 }
 
 HandoffTotals totalsOf(const ParticleSet& p, const std::vector<std::size_t>* subset) {
@@ -405,7 +407,26 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   t0 = std::chrono::steady_clock::now();
   if (params.dropEjecta) // escaping: out.sphEjecta keeps what they carry away
     ejecta.clear();
-  ejecta.insert(ejecta.end(), curtain.begin(), curtain.end()); // the curtain lands: never dropped
+  ejecta.insert(ejecta.end(), curtain.begin(), curtain.end()); // the curtain lands
+  if (params.landsInside) {
+    // Ballistic flight down to the surface level: z(t) = z + v_z t − g t²/2 = surfaceHeight.
+    std::vector<std::size_t> staying, escaped;
+    for (std::size_t i : ejecta) {
+      const double* x = &sph.x[3 * i];
+      const double* v = &sph.v[3 * i];
+      const double up = std::max(0.0, x[2] - region.surfaceHeight), g = params.gravity;
+      double t = INFINITY;
+      if (g > 0.0)
+        t = (v[2] + std::sqrt(v[2] * v[2] + 2.0 * g * up)) / g;
+      else if (v[2] < 0.0)
+        t = up / -v[2];
+      const bool lands = std::isfinite(t) && params.landsInside(x[0] + v[0] * t, x[1] + v[1] * t);
+      (lands ? staying : escaped).push_back(i);
+    }
+    ejecta.swap(staying);
+    out.escapedCount = escaped.size();
+    out.sphEscaped = sphTotals(sph, escaped);
+  }
   double rhoGrain = params.ejectaDensity, rmax = 0.0;
   if (rhoGrain == 0.0) {
     double m = 0.0, vol = 0.0;

@@ -27,6 +27,10 @@
 //    step 4 is made after this, on the bed particles that remain. Compact material above the
 //    surface (the curtain of a late hand-off) becomes particles the same way (curtainAsParticles),
 //    and the mapped bed then carries the momentum of the compact material below it.
+// 6. Ejecta and curtain whose ballistic flight (uniform gravity) comes down to the surface
+//    level outside the container's footprint leave the simulated domain (landsInside): they
+//    become no particles and their totals are reported (sphEscaped). They would land on ground
+//    the bed does not hold, and only the fastest of them would set the DEM's stiffness.
 #pragma once
 
 #include "common/ParticleSet.h"
@@ -71,6 +75,11 @@ struct HandoffParams {
   // anywhere. Ejecta are moved along their velocity, forward first, then backward, to the
   // nearest place that is allowed and free.
   std::function<bool(const double* x, double r)> allowed;
+  // Where ballistic material may come down (the container's footprint: x, y at the surface
+  // level); empty: everywhere, nothing escapes. Flights use `gravity` (m/s², along −z); with
+  // none, material moving up never comes down and escapes.
+  std::function<bool(double x, double y)> landsInside;
+  double gravity = 0.0;
   void validate() const;
 };
 
@@ -86,11 +95,13 @@ struct HandoffResult {
   std::vector<long long> triangles;   // 3 vertex indices per triangle, outward normals
   double alphaRadius = 0.0;
   std::size_t compactCount = 0, ejectaCount = 0, bedRemoved = 0, bedMapped = 0;
-  std::size_t curtainCount = 0;       // compact SPH particles above the surface, made particles
+  std::size_t curtainCount = 0;       // compact SPH particles above the surface (escaped ones included)
+  std::size_t escapedCount = 0;       // curtain and kept ejecta that land outside the container
   std::size_t ejectaShrunk = 0;       // ejecta with no free place on their path, made smaller to fit
   std::size_t bedEvicted = 0;         // bed particles whose place an ejecta particle took
   HandoffTotals sphCompact, sphEjecta, demMapped, demEjecta, demBefore; // demBefore: mapped set before correction
   HandoffTotals sphCurtain;           // the part of sphCompact above the surface (in demEjecta, not demMapped)
+  HandoffTotals sphEscaped;           // curtain and kept ejecta landing outside (in neither)
   double shapeVolume = 0.0;           // volume of the alpha shape's interior cells, m³
   std::vector<std::string> warnings;
   struct Timing {

@@ -344,6 +344,58 @@ TEST(Handoff, CurtainAboveTheSurfaceBecomesParticles) {
     EXPECT_NEAR(r.demMapped.momentum[a], r.sphCompact.momentum[a], 1e-10 * r.sphCompact.mass * 0.5);
 }
 
+// A curtain thrown outwards: 200 particles on a ring of radius 0.5 m, 0.3 m above the surface,
+// moving up at 2 m/s and outwards at u_k, under g = 10 m/s². Each comes down to z = 0 after
+// t = (2 + sqrt(4 + 2 g 0.3)) / g = 0.516 s at r = 0.5 + u_k t; those beyond the footprint
+// radius 1.0 m leave the domain. The rest become particles; mapped bed + particles + escaped
+// carry exactly the compact momentum.
+TEST(Handoff, BallisticMaterialLandingOutsideTheContainerEscapes) {
+  const Field f = [](const double*, double* v) { v[0] = 0.0, v[1] = 0.0, v[2] = -0.1; };
+  SphSnapshot sph = lattice(f);
+  const double g = 10.0, vz = 2.0, lift = 0.3, R = 1.0;
+  const double tLand = (vz + std::sqrt(vz * vz + 2.0 * g * lift)) / g;
+  std::size_t expectOut = 0;
+  for (int k = 0; k < 200; ++k) {
+    const double phi = 2.0 * M_PI * k / 200.0, u = 0.01 * k; // 0 to 1.99 m/s outwards
+    const double x[3] = {0.5 * std::cos(phi), 0.5 * std::sin(phi), lift};
+    const double v[3] = {u * std::cos(phi), u * std::sin(phi), vz};
+    expectOut += 0.5 + u * tLand > R ? 1 : 0;
+    sph.x.insert(sph.x.end(), x, x + 3);
+    sph.v.insert(sph.v.end(), v, v + 3);
+    sph.mass.push_back(kRho * kDx * kDx * kDx);
+    sph.h.push_back(2.5 * kDx);
+  }
+  ASSERT_GT(expectOut, 50u);
+  ASSERT_LT(expectOut, 150u);
+  HandoffParams params;
+  params.ejectaSpeedLimit = 10.0; // the curtain is slower: compact material above the surface
+  params.dropEjecta = true;
+  params.gravity = g;
+  params.landsInside = [R](double x, double y) { return x * x + y * y <= R * R; };
+  const HandoffResult r = handoff(sph, bed(), hemisphere(), params);
+  EXPECT_EQ(r.curtainCount, 200u);
+  EXPECT_EQ(r.escapedCount, expectOut);
+  std::size_t inserted = 0;
+  for (int o : r.origin)
+    inserted += o == 1 ? 1 : 0;
+  EXPECT_EQ(inserted, 200u - expectOut);
+  const double m = kRho * kDx * kDx * kDx;
+  EXPECT_NEAR(r.sphEscaped.mass, expectOut * m, 1e-12 * r.sphCompact.mass);
+  EXPECT_NEAR(r.sphEscaped.momentum[2], expectOut * m * vz, 1e-12 * r.sphCompact.mass);
+  const double scale = r.sphCompact.mass * 2.0;
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(r.demMapped.momentum[a] + r.demEjecta.momentum[a] + r.sphEscaped.momentum[a], r.sphCompact.momentum[a],
+                1e-10 * scale);
+    EXPECT_NEAR(r.demEjecta.momentum[a] + r.sphEscaped.momentum[a], r.sphCurtain.momentum[a], 1e-10 * scale);
+  }
+  // Without gravity nothing moving up comes down: the whole curtain escapes.
+  params.gravity = 0.0;
+  EXPECT_EQ(handoff(sph, bed(), hemisphere(), params).escapedCount, 200u);
+  // Without a footprint nothing escapes.
+  params.landsInside = nullptr;
+  EXPECT_EQ(handoff(sph, bed(), hemisphere(), params).escapedCount, 0u);
+}
+
 // Velocities mapped onto grains never leave the range of the SPH velocities around them, even
 // where the grains sit at the wall of a cavity with their SPH neighbours on one side and the
 // field is rough (random velocities in [-1, 1] m/s): the linear fit is limited (Barth &
