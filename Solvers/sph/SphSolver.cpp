@@ -233,33 +233,56 @@ void SphSolver::integrateDamage(SphState& s, const SphState& from, double dt, co
   }
 }
 
-bool SphSolver::neighboursValid(const SphState& s, double extra) const {
-  // Valid while no pair can have come within its interaction range without being listed:
-  // two particles close in by at most the sum of their displacements since the build (plus
-  // `extra`, the motion still to come in this step), and no h has grown past the allowance.
+bool SphSolver::neighboursValid(const SphState& s, double dt) const {
+  // Valid while no pair can have come within its listing range without being listed. A pair
+  // closes in by at most the sum of its two particles' displacements D (since the build, plus
+  // 1.5 dt |v| for the motion still to come in this step). An unlisted pair had at least the
+  // margin to spare, so the two largest D bound every pair; but a particle with a clearance C
+  // (no unlisted particle within twice the margin at the build: ejecta in flight, alone or in
+  // small clumps) had C to spare against everybody and needs only D + D_max < C. Such particles
+  // are left out of the two largest, so that a few fast fragments do not force a new list for
+  // all. And no h has grown past the allowance.
+  const std::size_t n = s.size();
   if (nb_.x.size() != s.x.size())
     return false;
-  double d2max = 0.0;
+  const bool xs = !k1_.dx.empty();
+  std::vector<double>& D = nbMoved_;
+  D.assign(n, 0.0);
+  double dAll = 0.0;
   bool hOk = true;
-  for (std::size_t i = 0; i < s.size(); ++i) {
+  for (std::size_t i = 0; i < n; ++i) {
     if (nb_.out[i]) {
       if (!outside(s, i))
         return false; // back in the domain: it needs neighbours
       continue;
     }
-    double d2 = 0.0;
+    double moved2 = 0.0, v2 = 0.0;
     for (int k = 0; k < 3; ++k) {
       double d = s.x[3 * i + k] - nb_.x[3 * i + k];
       if (par_.periodic[k]) {
         const double L = par_.boxHi[k] - par_.boxLo[k];
         d -= L * std::round(d / L);
       }
-      d2 += d * d;
+      moved2 += d * d;
+      const double w = s.v[3 * i + k] + (xs ? k1_.dx[3 * i + k] : 0.0);
+      v2 += w * w;
     }
-    d2max = std::max(d2max, d2);
+    D[i] = std::sqrt(moved2) + 1.5 * dt * std::sqrt(v2);
+    dAll = std::max(dAll, D[i]);
     hOk = hOk && s.h[i] <= 0.98 * nb_.grow * nb_.h[i]; // room for the growth within this step
   }
-  return hOk && 2.0 * (std::sqrt(d2max) + extra) < nb_.margin;
+  if (!hOk)
+    return false;
+  double d1 = 0.0, d2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (nb_.out[i] || D[i] + dAll < nb_.clearance[i])
+      continue;
+    if (D[i] > d2) {
+      d2 = std::min(D[i], d1);
+      d1 = std::max(D[i], d1);
+    }
+  }
+  return d1 + d2 < nb_.margin;
 }
 
 void SphSolver::buildNeighbours(const SphState& s, double margin) {
@@ -348,7 +371,9 @@ void SphSolver::buildNeighbours(const SphState& s, double margin) {
     }
   }
   cellStart.push_back(static_cast<std::uint32_t>(m));
+  // Lists a's neighbours; true if an unlisted particle came within twice the margin.
   auto visit = [&](std::size_t a, std::vector<std::uint32_t>& out) {
+    bool nearMiss = false;
     const double* xa = &s.x[3 * a];
     std::int64_t c0[3], c1[3];
     for (int k = 0; k < 3; ++k) {
@@ -376,12 +401,45 @@ void SphSolver::buildNeighbours(const SphState& s, double margin) {
                             (xa[2] - xb[2]) * (xa[2] - xb[2]);
           if (r2 < cut * cut)
             out.push_back(e);
+          else if (r2 < (cut + margin) * (cut + margin))
+            nearMiss = true;
         }
       }
+    return nearMiss;
+  };
+  // A particle with no unlisted particle within twice the margin gets its clearance: how far
+  // the nearest unlisted particle (searched to four reaches) is beyond the pair's listing range
+  // without the margin; anybody farther has at least `far` minus the largest range to spare.
+  const double far = 4.0 * reach;
+  auto clearanceOf = [&](std::size_t a) {
+    const double* xa = &s.x[3 * a];
+    double spare = far - grow * hmax;
+    for (std::int64_t cz = coord(xa[2] - far, 2); cz <= coord(xa[2] + far, 2); ++cz)
+      for (std::int64_t cy = coord(xa[1] - far, 1); cy <= coord(xa[1] + far, 1); ++cy) {
+        auto it = std::lower_bound(cellKey.begin(), cellKey.end(), key(coord(xa[0] - far, 0), cy, cz));
+        const std::int64_t last = key(coord(xa[0] + far, 0), cy, cz);
+        for (; it != cellKey.end() && *it <= last; ++it) {
+          const std::size_t c = static_cast<std::size_t>(it - cellKey.begin());
+          for (std::uint32_t r = cellStart[c]; r < cellStart[c + 1]; ++r) {
+            const std::uint32_t e = sid[r];
+            const std::size_t b = e / 32;
+            if (b == a && e % 32 == kNoShift)
+              continue;
+            const double* xb = &spos[3 * r];
+            const double d = std::sqrt((xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
+                                       (xa[2] - xb[2]) * (xa[2] - xb[2]));
+            const double range = grow * std::max(s.h[a], s.h[b]);
+            if (d >= range + margin) // listed ones are not spare
+              spare = std::min(spare, d - range);
+          }
+        }
+      }
+    return std::max(spare, margin); // unlisted: at least the margin
   };
   // One pass: each thread lists a contiguous block of particles into its own buffer (in the
   // grid's order, the same for any thread count), then the blocks are copied into place.
   nb_.start.assign(n + 1, 0);
+  nb_.clearance.assign(n, 0.0);
   const int threads = n >= 1024 ? omp_get_max_threads() : 1;
   std::vector<std::vector<std::uint32_t>> buffers(static_cast<std::size_t>(threads));
 #pragma omp parallel num_threads(threads)
@@ -392,8 +450,10 @@ void SphSolver::buildNeighbours(const SphState& s, double margin) {
     out.clear();
     for (std::size_t a = a0; a < a1; ++a) {
       const std::size_t before = out.size();
-      if (!nb_.out[a])
-        visit(a, out);
+      if (!nb_.out[a]) {
+        if (!visit(a, out))
+          nb_.clearance[a] = clearanceOf(a);
+      }
       nb_.start[a + 1] = static_cast<std::uint32_t>(out.size() - before);
     }
   }
@@ -868,7 +928,7 @@ double SphSolver::step(double dt) {
                                std::to_string(s_.material[worst]) + ")");
     // Rebuild the list when this step's motion (dt vmax, plus what the velocity gains) could
     // bring an unlisted pair into range; the margin covers several steps.
-    if (!neighboursValid(s_, 1.5 * dt * vmax)) {
+    if (!neighboursValid(s_, dt)) {
       const double hmin = *std::min_element(s_.h.begin(), s_.h.end());
       buildNeighbours(s_, std::max(par_.skin * hmin, 4.0 * dt * vmax));
     }

@@ -111,6 +111,7 @@ private:
     std::vector<std::uint32_t> entry; // neighbour index * 32 + periodic image code
     std::vector<double> x, h;         // positions and smoothing lengths at the build
     std::vector<char> out;            // outside the domain at the build (no neighbours)
+    std::vector<double> clearance;    // > 0: no unlisted particle within twice the margin; this much to spare (m)
     double margin = 0.0, grow = 1.0;
   };
   void assignFlaws();
@@ -119,7 +120,7 @@ private:
   void enterLateStage(bool scaleStress);
   void integrateDamage(SphState& s, const SphState& from, double dt, const Rates& a, const Rates* b) const;
   void buildNeighbours(const SphState& s, double margin);
-  bool neighboursValid(const SphState& s, double extra) const;
+  bool neighboursValid(const SphState& s, double dt) const; // for a step of dt
   // Positions into the periodic box, h from ρ, ρ by summation when asked, then pressure and
   // sound speed into p and c and the yield limit on the deviatoric stress.
   void settle(SphState& s, std::vector<double>& p, std::vector<double>& c) const;
@@ -147,6 +148,7 @@ private:
   Rates k2_;
   std::vector<double> pm_, cm_;
   std::vector<double> p_, c_;  // pressure and sound speed of the current state
+  mutable std::vector<double> nbMoved_; // neighboursValid's displacement bounds (reused)
   double time_ = 0.0, stableStep_ = 0.0;
   std::size_t steps_ = 0;
   bool late_ = false;

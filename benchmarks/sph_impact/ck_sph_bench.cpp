@@ -4,7 +4,10 @@
 //   ck_sph_bench [END_TIME [PARTICLES_ACROSS_IMPACTOR [TARGET_RADIUS]]]
 //   ck_sph_bench pysph-impact3d [STEPS [KAPPA [wendland|cubic]]]
 // Environment: CK_POROSITY (target porosity), CK_IMPACTOR (material name), CK_SKIN
-// (neighbour-list skin in units of h).
+// (neighbour-list skin in units of h), CK_GRAVITY (m/s²), CK_CONTAINER (1: the rigid
+// container), CK_LATE_STAGE ("TIME SOUND_SPEED": the late-stage scheme). The SCI example's
+// SPH stage at its ctest size: CK_GRAVITY=1000 CK_CONTAINER=1 CK_LATE_STAGE="1e-3 317"
+// ck_sph_bench 0.02 2 0.8.
 #include "sph/ImpactSetup.h"
 #include "sph/SphSolver.h"
 
@@ -12,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <omp.h>
 
@@ -88,11 +92,20 @@ int main(int argc, char** argv) {
     setup.targetPorosity = std::atof(e);
   if (const char* e = std::getenv("CK_IMPACTOR"))
     setup.impactorMaterial = e;
+  if (const char* e = std::getenv("CK_GRAVITY"))
+    setup.surfaceGravity = std::atof(e);
+  if (const char* e = std::getenv("CK_CONTAINER"))
+    setup.container = std::atoi(e) != 0;
   setup.frictionAngle = 30.0;
   setup.cohesion = 0.0;
   SphImpactProblem prob = buildImpact(setup);
   if (const char* e = std::getenv("CK_SKIN"))
     prob.params.skin = std::atof(e);
+  if (const char* e = std::getenv("CK_LATE_STAGE")) { // "TIME SOUND_SPEED", as SPHImpact's LateStage*
+    prob.params.lateStageTime = std::atof(e);
+    if (const char* c = std::strchr(e, ' '))
+      prob.params.lateStageSoundSpeed = std::atof(c + 1);
+  }
 
   SphSolver solver(prob.state, prob.params);
   const std::size_t n = prob.state.size();

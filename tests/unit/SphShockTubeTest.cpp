@@ -202,3 +202,58 @@ TEST(SphSolver, ThreadCountDoesNotChangeTheResult) {
   EXPECT_EQ(one.rho, two.rho);
   omp_set_num_threads(1);
 }
+
+// Neighbour lists are kept over steps until a pair could have come into range unlisted; a
+// particle with nothing near it at the build (a fragment in flight, alone or in a clump) is
+// checked against its own clearance so that it does not force new lists for everybody. The
+// oracle: fragments flying into a resting block from far away (hundreds of steps, far beyond
+// any margin) must hit it. A missed pair would let them fly through the block unopposed.
+TEST(SphSolver, FragmentsFlyingIntoABodyAreNeverMissedByTheNeighbourLists) {
+  EquationOfState eos;
+  eos.model = EquationOfState::Model::Murnaghan;
+  eos.murnaghanRho0 = 1000.0, eos.murnaghanK0 = 1e7, eos.murnaghanN = 1.0; // c = 100 m/s
+  SphParams par;
+  par.materials = {fluidMaterial(eos)};
+  const double dx = 0.01, rho = 1000.0, m = rho * dx * dx * dx, v = 50.0;
+  SphState s;
+  const double rest[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = 0; k < 10; ++k) {
+        const double x[3] = {i * dx, j * dx, k * dx};
+        s.add(x, rest, m, rho, 0.0, 0);
+      }
+  const std::size_t block = s.size();
+  // A clump of two (listed with each other) from +x, 0.3 m off, and a lone fragment from -y.
+  const double c1[3] = {0.345, 0.045, 0.045}, c2[3] = {0.351, 0.045, 0.045}, lone[3] = {0.045, -0.30, 0.045};
+  const double vc[3] = {-v, 0.0, 0.0}, vl[3] = {0.0, v, 0.0};
+  s.add(c1, vc, m, rho, 0.0, 0);
+  s.add(c2, vc, m, rho, 0.0, 0);
+  s.add(lone, vl, m, rho, 0.0, 0);
+  SphSolver solver(s, par);
+  double closest = INFINITY; // of a fragment to the nearest block particle, over the run
+  std::size_t steps = 0;
+  while (solver.time() < 0.3 / v + 0.004) {
+    solver.step();
+    ++steps;
+    const SphState& now = solver.state();
+    for (std::size_t f = block; f < now.size(); ++f)
+      for (std::size_t b = 0; b < block; ++b) {
+        double d2 = 0.0;
+        for (int k = 0; k < 3; ++k)
+          d2 += (now.x[3 * f + k] - now.x[3 * b + k]) * (now.x[3 * f + k] - now.x[3 * b + k]);
+        closest = std::min(closest, std::sqrt(d2));
+      }
+  }
+  double blockP[3] = {0.0, 0.0, 0.0};
+  const SphState& end = solver.state();
+  for (std::size_t b = 0; b < block; ++b)
+    for (int k = 0; k < 3; ++k)
+      blockP[k] += m * end.v[3 * b + k];
+  std::printf("%zu steps; closest approach %.3g dx; block momentum (%.3g, %.3g) of the fragments' (%.3g, %.3g)\n",
+              steps, closest / dx, blockP[0], blockP[1], -2.0 * m * v, m * v);
+  EXPECT_GT(steps, 200u); // far more steps than the margin lasts for fragments this fast
+  EXPECT_GT(closest, 0.9 * dx); // the block's pressure stopped them (1.25 dx measured)
+  EXPECT_LT(blockP[0], -0.3 * 2.0 * m * v); // and took up their momentum
+  EXPECT_GT(blockP[1], 0.3 * m * v);
+}
