@@ -35,12 +35,13 @@ struct CubicSpline {
 };
 
 // Branch-free forms for vectorised loops, valid for 0 < q = r/h < 1 (callers filter first):
-// gradOverR(q, ih) = (dW/dr) / r and value(q, ih) = W, with ih = 1/h.
-inline double cubicGradOverR(double q, double ih) {
-  const double s = 8.0 / M_PI * ih * ih * ih * ih * ih; // 8/(π h⁵)
+// gradOverR(q, ih, iq) = (dW/dr) / r and value(q, ih) = W, with ih = 1/h and iq = 1/q (the
+// caller has 1/r at hand, so the kernel needs no division of its own).
+inline double cubicGradOverR(double q, double ih, double iq) {
+  const double ih2 = ih * ih, s = 8.0 / M_PI * ih2 * ih2 * ih; // 8/(π h⁵)
   const double t = 1.0 - q;
   const double inner = 18.0 * q - 12.0;        // (18q² − 12q)/q
-  const double outer = -6.0 * t * t / q;
+  const double outer = -6.0 * t * t * iq;
   return s * (q < 0.5 ? inner : outer);
 }
 inline double cubicValue(double q, double ih) {
@@ -67,9 +68,9 @@ struct WendlandC2 {
   }
 };
 
-inline double wendlandGradOverR(double q, double ih) {
-  const double t = 1.0 - q;
-  return 21.0 / (2.0 * M_PI) * ih * ih * ih * ih * ih * (-20.0 * t * t * t);
+inline double wendlandGradOverR(double q, double ih, double /*iq*/) {
+  const double t = 1.0 - q, ih2 = ih * ih;
+  return 21.0 / (2.0 * M_PI) * ih2 * ih2 * ih * (-20.0 * t * t * t);
 }
 inline double wendlandValue(double q, double ih) {
   const double t = 1.0 - q;
@@ -78,11 +79,11 @@ inline double wendlandValue(double q, double ih) {
 
 template <class K> struct Branchless;
 template <> struct Branchless<CubicSpline> {
-  static double gradOverR(double q, double ih) { return cubicGradOverR(q, ih); }
+  static double gradOverR(double q, double ih, double iq) { return cubicGradOverR(q, ih, iq); }
   static double value(double q, double ih) { return cubicValue(q, ih); }
 };
 template <> struct Branchless<WendlandC2> {
-  static double gradOverR(double q, double ih) { return wendlandGradOverR(q, ih); }
+  static double gradOverR(double q, double ih, double iq) { return wendlandGradOverR(q, ih, iq); }
   static double value(double q, double ih) { return wendlandValue(q, ih); }
 };
 

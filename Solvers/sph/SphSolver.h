@@ -131,7 +131,7 @@ private:
   // Rates of s; returns the largest signal speed over h/2.
   double computeRates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c,
                       Rates& r) const;
-  template <class K>
+  template <class K, bool Xsph>
   double rates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c, Rates& r) const;
   template <class K> void summation(SphState& s) const;
   double limitStep(const SphState& s, const Rates& r, double maxSignal) const;
