@@ -102,7 +102,12 @@ int vtkCraterKitCraterProfile::RequestData(
     b::addField(fd, "RejectedAsEjecta", static_cast<double>(r.rejectedAsEjecta));
     b::addField(fd, "ImpactAxis", this->ImpactAxis, 2);
   }
-  if (!r.all.found)
+  if (!r.all.found && r.all.depth > 0.0)
+    vtkWarningMacro(<< "no crater diameter: the surface dips " << r.all.depth << " m below SurfaceHeight ("
+                    << p.surfaceHeight << " m) but does not rise back to it within the profile (the "
+                    "surface around the pit lies below the original level, or the crater is wider than "
+                    "the particles reach)");
+  else if (!r.all.found)
     vtkWarningMacro(<< "no crater: the surface never dips below SurfaceHeight (" << p.surfaceHeight << " m)");
   return 1;
 }

@@ -10,10 +10,14 @@ diameter and depth as coloured lines with a legend.
 MEASURE_COLORS = {"diameter": [0.85, 0.1, 0.1], "rim": [0.1, 0.3, 0.9], "depth": [0.1, 0.6, 0.2]}
 
 
-def crater_measures(profile):
+def crater_measures(profile, time=None):
     """The summary of a CraterProfile proxy as a dict (diameter, rim_diameter, rim_height,
-    depth, volume, surface, found)."""
+    depth, volume, surface, found), at `time` for a time-dependent input: without it the
+    profile keeps the state it was first computed from, since a new time upstream does not
+    modify the filter."""
     from paraview import servermanager
+    if time is not None:
+        profile.UpdatePipeline(time)
     data = servermanager.Fetch(profile)
     fd = data.GetFieldData()
 

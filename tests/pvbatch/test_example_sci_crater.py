@@ -1,8 +1,9 @@
-"""Runs examples/sci_crater.py at its smallest size (the SCI impactor and regolith at 1000 m/s^2,
-where the DEM stage is short) and checks what it wrote: the hand-off carried the compact SPH
-material's momentum over exactly and the dropped ejecta account for the rest, the DEM bed lost
-energy as it settled, the pi-scaling prediction agrees with the values computed by hand in
-PHYSICS.md section 4.2, and the pictures and report exist."""
+"""Runs examples/sci_crater.py at its smallest size (the SCI impactor and regolith at the default
+1000 m/s^2: the SPH stage to the late hand-off, a bed of 1,500 grains) and checks what it wrote:
+the crater's diameter is within 35 % of the pi-scaling prediction for the run's own parameters,
+the hand-off carried the compact SPH material's momentum over exactly and the dropped ejecta
+account for the rest, the DEM bed lost energy as it settled, the pi-scaling prediction agrees
+with the values computed by hand in PHYSICS.md section 4.2, and the pictures and report exist."""
 
 import json
 import os
@@ -15,8 +16,8 @@ from craterkit.testing import Checker, run_example
 
 source_dir, out = sys.argv[1], sys.argv[2]
 t = Checker("example sci_crater")
-code = run_example(source_dir, "sci_crater", ["--gravity", "1000", "--particles", "1500", "--sph-resolution", "3",
-                                              "--frames", "2", "--width", "500", "--output-dir", out])
+code = run_example(source_dir, "sci_crater", ["--particles", "1500", "--frames", "2", "--width", "500",
+                                              "--output-dir", out])
 t.check(code == 0, f"example exited with {code}")
 r = json.load(open(os.path.join(out, "report.json")))
 
@@ -30,8 +31,10 @@ t.check(np.allclose(np.add(r["dem_mapped_momentum_kg_m_s"], r["sph_curtain_momen
 t.check(np.allclose(np.add(r["sph_compact_momentum_kg_m_s"], r["sph_ejecta_dropped"]["momentum_kg_m_s"]),
                     sph["momentum_kg_m_s"], rtol=0, atol=1e-9 * scale),
         "compact and dropped ejecta momentum do not add up to the SPH total")
-t.check(np.allclose(r["dem_totals_after_handoff"]["momentum_kg_m_s"], r["sph_compact_momentum_kg_m_s"], rtol=0,
-                    atol=1e-9 * scale), "the DEM particles carry more than the mapped momentum (bed at rest?)")
+# What comes down outside the bowl leaves the domain; the DEM particles carry the rest.
+t.check(np.allclose(np.add(r["dem_totals_after_handoff"]["momentum_kg_m_s"], r["sph_escaped"]["momentum_kg_m_s"]),
+                    r["sph_compact_momentum_kg_m_s"], rtol=0, atol=1e-9 * scale),
+        "the DEM particles and the escaped material do not carry the compact momentum (bed not at rest?)")
 t.check(r["dem_steps"] > 1000, f"only {r['dem_steps']} DEM steps")
 end, start = r["dem_totals_at_end"]["bed_kinetic_energy_J"], r["dem_totals_after_handoff"]["bed_kinetic_energy_J"]
 t.check(end < 0.5 * start, f"the bed did not come to rest: kinetic energy {start:.3g} J -> {end:.3g} J")
@@ -40,6 +43,13 @@ t.check(end < 0.5 * start, f"the bed did not come to rest: kinetic energy {start
 t.check(abs(r["pi_scaling_diameter_at_ryugu_m"] - 14.5) < 0.15, f"SCI pi-scaling {r['pi_scaling_diameter_at_ryugu_m']}")
 t.check(abs(crater_diameter(2.0, 2000.0, 8900.0, 1190.0, 1.3e-4) - 14.9) < 0.15, "pi-scaling at 1.3e-4 m/s^2")
 t.check(abs(r["target"]["bulk_density_kg_m3"] - 1190.0) < 2.0, f"target bulk density {r['target']['bulk_density_kg_m3']}")
+# The crater: the issue's criterion, within 35 % of pi-scaling (measured against the settled bed's
+# own surface; the hand-off carves the SPH stage's crater and the DEM stage settles it).
+ratio = r["diameter_over_pi_scaling"]
+t.check(ratio is not None and abs(ratio - 1.0) <= 0.35,
+        f"crater diameter {r['crater_diameter_m']} m against pi-scaling {r['pi_scaling_diameter_m']} m")
+t.check(r["crater_depth_m"] is not None and 0.05 < r["crater_depth_m"] / r["pi_scaling_diameter_m"] < 0.5,
+        f"crater depth {r['crater_depth_m']} m")
 for image in r["images"]:
     path = os.path.join(out, image)
     t.check(os.path.isfile(path) and os.path.getsize(path) > 10000, f"{image} missing or empty")
