@@ -156,9 +156,12 @@ int vtkCraterKitImpactHandoff::RequestData(
           };
       }
     }
-    if (vtkDataArray* g = sphIn->GetFieldData()->GetArray("Gravity"))
-      if (g->GetNumberOfComponents() == 3)
-        p.gravity = std::max(0.0, -g->GetComponent(0, 2)); // along -z
+    vtkDataArray* g = sphIn->GetFieldData()->GetArray("Gravity");
+    if (g && g->GetNumberOfComponents() == 3)
+      p.gravity = std::max(0.0, -g->GetComponent(0, 2)); // along -z
+    else if (p.landsInside)
+      vtkWarningMacro(<< "the SPH input has no Gravity field: with DropEjectaLandingOutside, material moving "
+                         "up never comes down and leaves the domain");
     r = handoff(s, bed, region, p);
   });
   if (!ok)

@@ -184,6 +184,7 @@ int vtkCraterKitSPHImpact::RequestData(
   b::addField(fd, "ImpactSpeed", this->ImpactSpeed);
   b::addField(fd, "ImpactAngle", this->ImpactAngle);
   b::addField(fd, "ImpactorMaterial", this->ImpactorMaterial);
+  b::addField(fd, "ImpactorMass", this->ImpactorMass);
   b::addField(fd, "TargetMaterial", this->TargetMaterial);
   b::addField(fd, "FrictionAngle", this->FrictionAngle);
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);

@@ -139,6 +139,12 @@ def saved_sph_state(simple, args):
     speed = field_value(data, "ImpactSpeed")
     if abs(speed - args.impact_speed) > 1e-6 * args.impact_speed:
         sys.exit(f"--sph-state {args.sph_state}: its impact speed is {speed:g} m/s, this run's {args.impact_speed:g}")
+    mass = field_value(data, "ImpactorMass")
+    if mass is not None and abs(mass - args.impactor_mass) > 1e-6 * args.impactor_mass:
+        sys.exit(f"--sph-state {args.sph_state}: its impactor mass is {mass:g} kg, this run's {args.impactor_mass:g}")
+    target = field_value(data, "TargetMaterial")
+    if target is not None and target != args.target_material:
+        sys.exit(f"--sph-state {args.sph_state}: its target is {target}, this run's {args.target_material}")
     return sph, data, field_value(data, "Time")
 
 

@@ -243,7 +243,7 @@ bool SphSolver::neighboursValid(const SphState& s, double dt) const {
   // are left out of the two largest, so that a few fast fragments do not force a new list for
   // all. And no h has grown past the allowance.
   const std::size_t n = s.size();
-  if (nb_.x.size() != s.x.size())
+  if (nb_.x.size() != s.x.size() || par_.rebuildEveryStep)
     return false;
   const bool xs = !k1_.dx.empty();
   std::vector<double>& D = nbMoved_;
@@ -256,18 +256,21 @@ bool SphSolver::neighboursValid(const SphState& s, double dt) const {
         return false; // back in the domain: it needs neighbours
       continue;
     }
-    double moved2 = 0.0, v2 = 0.0;
+    double moved2 = 0.0, v2 = 0.0, a2 = 0.0;
     for (int k = 0; k < 3; ++k) {
-      double d = s.x[3 * i + k] - nb_.x[3 * i + k];
-      if (par_.periodic[k]) {
-        const double L = par_.boxHi[k] - par_.boxLo[k];
-        d -= L * std::round(d / L);
-      }
+      const double d = s.x[3 * i + k] - nb_.x[3 * i + k];
+      // A particle wrapped through a periodic face since the build: its listed pairs carry
+      // the image codes of the old side.
+      if (par_.periodic[k] && std::abs(d) > 0.5 * (par_.boxHi[k] - par_.boxLo[k]))
+        return false;
       moved2 += d * d;
       const double w = s.v[3 * i + k] + (xs ? k1_.dx[3 * i + k] : 0.0);
       v2 += w * w;
+      if (k1_.dv.size() == s.v.size())
+        a2 += k1_.dv[3 * i + k] * k1_.dv[3 * i + k];
     }
-    D[i] = std::sqrt(moved2) + 1.5 * dt * std::sqrt(v2);
+    // Motion still to come in the step: speed, with a margin, and what the acceleration adds.
+    D[i] = std::sqrt(moved2) + 1.5 * dt * std::sqrt(v2) + dt * dt * std::sqrt(a2);
     dAll = std::max(dAll, D[i]);
     hOk = hOk && s.h[i] <= 0.98 * nb_.grow * nb_.h[i]; // room for the growth within this step
   }
@@ -418,6 +421,9 @@ void SphSolver::buildNeighbours(const SphState& s, double margin) {
   const double far = 4.0 * reach;
   auto clearanceOf = [&](std::size_t a) {
     const double* xa = &s.x[3 * a];
+    for (int k = 0; k < 3; ++k) // periodic images are listed only within one reach of the box
+      if (par_.periodic[k] && (xa[k] < par_.boxLo[k] + far || xa[k] > par_.boxHi[k] - far))
+        return 0.0;
     double spare = far - grow * hmax;
     for (std::int64_t cz = coord(xa[2] - far, 2); cz <= coord(xa[2] + far, 2); ++cz)
       for (std::int64_t cy = coord(xa[1] - far, 1); cy <= coord(xa[1] + far, 1); ++cy) {
@@ -456,7 +462,7 @@ void SphSolver::buildNeighbours(const SphState& s, double margin) {
     for (std::size_t a = a0; a < a1; ++a) {
       const std::size_t before = out.size();
       if (!nb_.out[a]) {
-        if (!visit(a, out))
+        if (!visit(a, out) && margin > 0.0) // with no margin the list is rebuilt at once anyway
           nb_.clearance[a] = clearanceOf(a);
       }
       nb_.start[a + 1] = static_cast<std::uint32_t>(out.size() - before);
@@ -524,7 +530,7 @@ void SphSolver::eosAndYield(SphState& s, std::vector<double>& p, std::vector<dou
         if (!(x > lo && x < hi))
           x = 0.5 * (lo + hi);
         const double fx = f(x);
-        if (fx > 0.0) {
+        if (!(fx <= 0.0)) { // a NaN pressure counts as above the curve: lo keeps f(lo) <= 0
           hi = x, fhi = fx;
           if (side == 1)
             flo *= 0.5; // Illinois: the end kept twice in a row counts half
@@ -537,8 +543,8 @@ void SphSolver::eosAndYield(SphState& s, std::vector<double>& p, std::vector<dou
         }
         if (hi - lo > 0.5 * width) { // slow progress: bisect once
           const double mid = 0.5 * (lo + hi), fm = f(mid);
-          (fm > 0.0 ? hi : lo) = mid;
-          (fm > 0.0 ? fhi : flo) = fm;
+          (!(fm <= 0.0) ? hi : lo) = mid;
+          (!(fm <= 0.0) ? fhi : flo) = fm;
           side = 0;
         }
       }
@@ -668,8 +674,13 @@ struct PairConstants {
 // vector registers hold the loop's 17 sums and temporaries, so the pair loop runs eight pairs
 // wide (27 % less time for the SCI-like run here; AVX2, with 16 registers, spills and gains
 // nothing). Elsewhere the generic code runs. The two differ only by rounding.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
+#define CK_PAIR_CLONES __attribute__((target_clones("arch=x86-64-v4", "default")))
+#else
+#define CK_PAIR_CLONES
+#endif
 template <class K, bool Xsph>
-__attribute__((target_clones("arch=x86-64-v4", "default"))) PairSums
+CK_PAIR_CLONES PairSums
 pairSums(const Packed* Pp, const Packed& A, const std::uint32_t* entries, std::uint32_t count, Scratch& w,
          const PairConstants& pc) {
   // Pass 1: the listed neighbours inside the pair's support, with their separations.
@@ -801,7 +812,7 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
     pcA.gradOn = solid ? 1.0 : 0.0;
     const std::uint32_t first = nb_.start[a];
     const PairSums sums =
-      pairSums<K, Xsph>(Pp, A, &nb_.entry[first], nb_.start[a + 1] - first, scratch[omp_get_thread_num()], pcA);
+      pairSums<K, Xsph>(Pp, A, nb_.entry.data() + first, nb_.start[a + 1] - first, scratch[omp_get_thread_num()], pcA);
     const double* acc = sums.acc;
     const double* xs = sums.xs;
     const double* grad = sums.grad;

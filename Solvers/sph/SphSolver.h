@@ -52,6 +52,7 @@ struct SphParams {
   double forceFactor = 0.2;        // Δt ≤ forceFactor sqrt(h / |a|)
   std::uint64_t fractureSeed = 1;  // random assignment of Grady–Kipp flaws to particles
   double skin = 0.15;               // neighbour-list margin, in units of the smallest h
+  bool rebuildEveryStep = false;    // no list kept over steps (to check that keeping them changes nothing)
   double errorTolerance = 0.02;    // largest relative Euler–Heun difference of a step (else retaken shorter)
   double minTimeStep = 0.0;        // a step below this stops the run (0: only a non-positive step)
   bool summationDensity = false;   // ρ = Σ m W (gases) instead of the integrated continuity equation

@@ -1,16 +1,19 @@
 #!/usr/bin/env python3
 """Validation of the SCI example (issue: CraterProfile, FragmentAnalysis and the SCI crater):
-runs examples/sci_crater.py for RCP and HCP beds at two bed sizes, one after the other, and
-prints a table of crater diameter, rim diameter and depth against the SCI crater and the
-pi-scaling prediction, the RCP/HCP difference and the change between the two sizes.
+runs examples/sci_crater.py for RCP and HCP beds at two bed sizes on one SPH stage (the first
+run's, handed to the others with --sph-state), and prints a table of crater diameter, rim
+diameter and depth against the pi-scaling prediction for the run and against the SCI crater,
+with the run read at Ryugu's gravity by pi-scaling (D x D_pi(Ryugu) / D_pi(run); in the gravity
+regime the crater's shape and D / D_pi do not depend on g). Checks, printed as PASS/FAIL: at
+the largest RCP bed, the scaled diameter within 15 % of 14.5 m and the depth within 25 % of
+2.3 m; HCP smaller and shallower than RCP; the change between the two bed sizes.
 
-    benchmarks/sci_crater/run.py                                   # Ryugu, 1e5 and 2e5 grains
-    benchmarks/sci_crater/run.py --gravity 9.81 --particles 6000 12000
-    benchmarks/sci_crater/run.py --resume ...                      # continue from checkpoints
+    benchmarks/sci_crater/run.py                         # g = 1000, RCP and HCP, 3e4 and 1e5 grains
+    benchmarks/sci_crater/run.py --particles 6000 --packings RCP
+    benchmarks/sci_crater/run.py --resume ...            # continue the DEM stages from checkpoints
 
-Anything after -- goes to the example (e.g. -- --sph-target-radius 0.6). Results and reports
-go under build/benchmarks/sci_crater/<packing>_<particles>/. At Ryugu gravity each run takes
-days on two cores (the example prints its DEM step estimate first).
+Anything after -- goes to the example (e.g. -- --sph-resolution 3). Results, reports and a
+summary.json go under build/benchmarks/sci_crater/<packing>_<particles>/.
 """
 
 import argparse
@@ -21,25 +24,29 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SCI = {"diameter": 14.5, "rim_diameter": 18.0, "depth": 2.3}  # m (Zhang et al. 2021)
 
 
 def main(argv):
     split = argv.index("--") if "--" in argv else len(argv)
     own, extra = argv[:split], argv[split + 1:]
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--gravity", type=float, default=1.5e-4)
-    p.add_argument("--particles", type=int, nargs="+", default=[100000, 200000])
+    p.add_argument("--gravity", type=float, default=1000.0)
+    p.add_argument("--particles", type=int, nargs="+", default=[30000, 100000])
     p.add_argument("--packings", nargs="+", default=["RCP", "HCP"], choices=["RCP", "HCP"])
+    p.add_argument("--sph-state", default="", help="a saved SPH state to hand off (default: run the SPH stage once)")
     p.add_argument("--resume", action="store_true")
     p.add_argument("--output", default=os.path.join(ROOT, "build", "benchmarks", "sci_crater"))
     args = p.parse_args(own)
     rows = []
+    sph_state = args.sph_state
     for n in args.particles:
         for packing in args.packings:
             out = os.path.join(args.output, f"{packing}_{n}")
             cmd = [os.path.join(ROOT, "scripts", "pvbatch"), os.path.join(ROOT, "examples", "sci_crater.py"),
                    "--gravity", repr(args.gravity), "--particles", str(n), "--packing", packing,
-                   "--output-dir", out] + (["--resume"] if args.resume else []) + extra
+                   "--output-dir", out] + (["--resume"] if args.resume else []) + \
+                  (["--sph-state", sph_state] if sph_state else []) + extra
             print(f"== {packing}, {n} grains: {' '.join(cmd[1:])}", flush=True)
             start = time.time()
             code = subprocess.call(cmd)
@@ -49,18 +56,56 @@ def main(argv):
             r = json.load(open(os.path.join(out, "report.json")))
             r["wall_s"] = round(time.time() - start, 1)
             rows.append((packing, n, r))
-    print("\n| packing | grains | r (m) | D (m) | rim D (m) | depth (m) | D / pi-scaling | wall (s) |")
-    print("|---|---|---|---|---|---|---|---|")
-    fmt = lambda v: "none" if v is None else f"{v:.3g}"  # noqa: E731
+            if not sph_state:
+                sph_state = os.path.join(out, "sph_handoff.vtp")
+
+    fmt = lambda v, d=3: "none" if v is None else f"{v:.{d}g}"  # noqa: E731
+    print("\n| packing | grains | r (m) | D (m) | rim D (m) | depth (m) | D / D_pi | depth / D | "
+          "at Ryugu: D / rim D / depth (m) | DEM steps | wall (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for packing, n, r in rows:
-        print(f"| {packing} | {r['bed_particles']} | {r['grain_radius_m']:.3g} | {fmt(r['crater_diameter_m'])} | "
-              f"{fmt(r['rim_diameter_m'])} | {fmt(r['crater_depth_m'])} | {fmt(r['diameter_over_pi_scaling'])} | "
-              f"{r['wall_s']} |")
+        s = r.get("scaled_to_ryugu_m")
+        D, depth = r["crater_diameter_m"], r["crater_depth_m"]
+        ryugu = f"{s['diameter']:.3g} / {s['rim_diameter']:.3g} / {s['depth']:.3g}" if s else "none"
+        print(f"| {packing} | {r['bed_particles']} | {r['grain_radius_m']:.3g} | {fmt(D)} | {fmt(r['rim_diameter_m'])} | "
+              f"{fmt(depth)} | {fmt(r['diameter_over_pi_scaling'])} | {fmt(depth / D if D else None, 2)} | {ryugu} | "
+              f"{r['dem_steps']} | {r['wall_s']} |")
     r0 = rows[0][2]
-    print(f"\npi-scaling for these parameters: D = {r0['pi_scaling_diameter_m']} m; SCI crater: "
-          f"D = {r0['sci_crater_m']['diameter']} m, rim {r0['sci_crater_m']['rim_diameter']} m, "
-          f"depth {r0['sci_crater_m']['depth']} m")
-    return 0
+    print(f"\npi-scaling for these parameters: D = {r0['pi_scaling_diameter_m']} m; at Ryugu "
+          f"{r0['pi_scaling_diameter_at_ryugu_m']} m; SCI crater: D = {SCI['diameter']} m, rim {SCI['rim_diameter']} m, "
+          f"depth {SCI['depth']} m. Seconds per stage of the first run: {r0['seconds']}")
+
+    def check(ok, text):
+        print(f"{'PASS' if ok else 'FAIL'}: {text}")
+        return ok
+
+    by = {(pk, n): r for pk, n, r in rows}
+    largest = max(args.particles)
+    summary = {"rows": [{"packing": pk, "particles": n, "report": r} for pk, n, r in rows], "checks": []}
+    rcp = by.get(("RCP", largest))
+    if rcp and rcp.get("scaled_to_ryugu_m"):
+        s = rcp["scaled_to_ryugu_m"]
+        summary["checks"].append(check(abs(s["diameter"] / SCI["diameter"] - 1.0) <= 0.15,
+                                       f"RCP at {largest}: scaled diameter {s['diameter']:.3g} m within 15 % of 14.5 m"))
+        summary["checks"].append(check(abs(s["depth"] / SCI["depth"] - 1.0) <= 0.25,
+                                       f"RCP at {largest}: scaled depth {s['depth']:.3g} m within 25 % of 2.3 m"))
+    hcp = by.get(("HCP", largest))
+    if rcp and hcp and rcp["crater_diameter_m"] and hcp["crater_diameter_m"]:
+        summary["checks"].append(check(hcp["crater_diameter_m"] < rcp["crater_diameter_m"] and
+                                       hcp["crater_depth_m"] < rcp["crater_depth_m"],
+                                       f"HCP smaller and shallower than RCP (D {hcp['crater_diameter_m']:.3g} vs "
+                                       f"{rcp['crater_diameter_m']:.3g} m, depth {hcp['crater_depth_m']:.3g} vs "
+                                       f"{rcp['crater_depth_m']:.3g} m)"))
+    if len(args.particles) > 1:
+        small = min(args.particles)
+        for packing in args.packings:
+            a, b = by.get((packing, small)), by.get((packing, largest))
+            if a and b and a["crater_diameter_m"] and b["crater_diameter_m"]:
+                print(f"{packing}: D changes by {b['crater_diameter_m'] / a['crater_diameter_m'] - 1.0:+.1%} and the "
+                      f"depth by {b['crater_depth_m'] / a['crater_depth_m'] - 1.0:+.1%} from {small} to {largest} grains")
+    with open(os.path.join(args.output, "summary.json"), "w") as f:
+        json.dump(summary, f, indent=1)
+    return 0 if all(summary["checks"]) else 1
 
 
 if __name__ == "__main__":
