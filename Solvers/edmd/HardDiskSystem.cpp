@@ -148,7 +148,9 @@ HardDiskSystem::HardDiskSystem(const HardDisks& disks, const HardDiskParams& par
   for (std::uint32_t b : bigs_)
     reach_[b] = static_cast<int>(std::ceil((h_[b].r + smallMax_) * gEnd / std::min(cellW_, cellH_)));
 
-  head_.assign(nx_ * ny_, -1);
+  head_.assign(nx_ * ny_ + 1, -1); // the last cell stays empty: what lies beyond a wall
+  gridFast_ = nx_ >= 3 && ny_ >= 3 && p_.growthRate == 0.0;
+  chooseScans();
   prevInCell_.assign(n, -1);
   cellOf_.assign(n, CellXY{0, 0});
   for (std::size_t i = 0; i < n; ++i) {
@@ -232,6 +234,8 @@ double HardDiskSystem::smallestGapNearby() const {
 
 void HardDiskSystem::insertInCell(std::size_t i, std::size_t cx, std::size_t cy) {
   cellOf_[i] = CellXY{static_cast<std::uint32_t>(cx), static_cast<std::uint32_t>(cy)};
+  if (isBig_[i])
+    return; // big disks are not listed: they scan for the small ones, and everyone checks them
   const std::size_t cell = cy * nx_ + cx;
   prevInCell_[i] = -1;
   h_[i].next = head_[cell];
@@ -241,6 +245,8 @@ void HardDiskSystem::insertInCell(std::size_t i, std::size_t cx, std::size_t cy)
 }
 
 void HardDiskSystem::removeFromCell(std::size_t i) {
+  if (isBig_[i])
+    return;
   const std::int32_t prev = prevInCell_[i], next = h_[i].next;
   if (prev >= 0)
     h_[static_cast<std::size_t>(prev)].next = next;
@@ -306,9 +312,16 @@ void HardDiskSystem::cellEvent(std::size_t i, Event& best) const {
   const double xhi = (cx + 1 == nx_ && !p_.periodicX) ? kInf : (cx + 1) * cellW_;
   const double ylo = (cy == 0 && !p_.periodicY) ? -kInf : cy * cellH_;
   const double yhi = (cy + 1 == ny_ && !p_.periodicY) ? kInf : (cy + 1) * cellH_;
+  // A straight flight reaches the face it moves towards at (face - pos) / vel; a face at
+  // infinity (a walled end of the grid) gives an infinite time, so no event.
+  auto straight = [](double pos, double vel, double lo, double hi, int& side) {
+    side = vel > 0.0 ? 1 : vel < 0.0 ? -1 : 0;
+    return side == 0 ? kInf : std::max(0.0, ((side > 0 ? hi : lo) - pos) / vel);
+  };
   int sx, sy;
-  const double tx = exitTime(h_[i].x, h_[i].vx, 0.0, xlo, xhi, sx);
-  const double ty = exitTime(h_[i].y, h_[i].vy, -p_.gravity, ylo, yhi, sy);
+  const double tx = straight(h_[i].x, h_[i].vx, xlo, xhi, sx);
+  const double ty = p_.gravity == 0.0 ? straight(h_[i].y, h_[i].vy, ylo, yhi, sy)
+                                      : exitTime(h_[i].y, h_[i].vy, -p_.gravity, ylo, yhi, sy);
   if (time_ + tx < best.t && sx != 0)
     best = Event{time_ + tx, static_cast<std::uint32_t>(sx < 0 ? 0 : 1), EventType::Cell, 0};
   if (time_ + ty < best.t && sy != 0)
@@ -377,76 +390,131 @@ void HardDiskSystem::consider(std::size_t i, std::size_t j, Event& best) const {
     best = Event{t, static_cast<std::uint32_t>(j), EventType::Pair, h_[j].count};
 }
 
+// Pair events of small disk i with the small disks of one cell list, for a fixed kind of box
+// (gravity or not, periodic axes): the common case, with no growth, compiled without the
+// branches the general code needs.
+template <bool Grav, bool PX, bool PY>
+__attribute__((always_inline)) inline void HardDiskSystem::scanList(std::size_t i, std::int32_t k, Event& best) const {
+  const Hot& a = h_[i];
+  const double g = p_.gravity, now = time_;
+  const double W = p_.width, H = p_.height, hW = 0.5 * W, hH = 0.5 * H;
+  while (k >= 0) {
+    const std::size_t j = static_cast<std::size_t>(k);
+    const Hot& o = h_[j];
+    k = o.next;
+    if (j == i)
+      continue;
+    const double dtj = now - o.t;
+    double rx = o.x + o.vx * dtj - a.x, ry, uy;
+    if constexpr (Grav) {
+      ry = o.y + (o.vy - 0.5 * g * dtj) * dtj - a.y;
+      uy = o.vy - g * dtj - a.vy;
+    } else {
+      ry = o.y + o.vy * dtj - a.y;
+      uy = o.vy - a.vy;
+    }
+    if constexpr (PX) // nearest image (rarely another: the branch is predicted)
+      rx = rx > hW ? rx - W : rx < -hW ? rx + W : rx;
+    if constexpr (PY)
+      ry = ry > hH ? ry - H : ry < -hH ? ry + H : ry;
+    const double ux = o.vx - a.vx;
+    const double b = rx * ux + ry * uy;
+    if (b >= 0.0)
+      continue; // receding (a >= 0 without growth)
+    const double sigma = a.r + o.r;
+    const double c2 = rx * rx + ry * ry - sigma * sigma;
+    double tau = 0.0;
+    if (c2 > 0.0) {
+      const double disc = b * b - (ux * ux + uy * uy) * c2;
+      if (disc < 0.0)
+        continue;
+      tau = c2 / (-b + std::sqrt(disc));
+    }
+    if (now + tau < best.t)
+      best = Event{now + tau, static_cast<std::uint32_t>(j), EventType::Pair, o.count};
+  }
+}
+
+template <bool Grav, bool PX, bool PY> void HardDiskSystem::scanBlock(std::size_t i, Event& best) const {
+  // The 3x3 cells around i (an axis without periodicity reads the always empty cell beyond
+  // the grid at its ends); their first disks' records are requested together, since most
+  // cells hold zero or one disk and these are most of a prediction's loads.
+  const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
+  const long nx = static_cast<long>(nx_), ny = static_cast<long>(ny_), none = nx * ny;
+  long col[3], row[3];
+  for (int d = 0; d < 3; ++d) {
+    long kx = cx + d - 1, ky = cy + d - 1;
+    if constexpr (PX)
+      kx = kx < 0 ? nx - 1 : kx >= nx ? 0 : kx;
+    if constexpr (PY)
+      ky = ky < 0 ? ny - 1 : ky >= ny ? 0 : ky;
+    col[d] = kx;
+    row[d] = ky * nx;
+  }
+  std::int32_t first[9];
+  int cells = 0;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const bool inside = (PX || (col[c] >= 0 && col[c] < nx)) && (PY || (row[r] >= 0 && row[r] < none));
+      const std::int32_t k = head_[static_cast<std::size_t>(inside ? row[r] + col[c] : none)];
+      __builtin_prefetch(&h_[static_cast<std::size_t>(k < 0 ? 0 : k)]);
+      first[cells] = k;
+      cells += k >= 0;
+    }
+  for (int c = 0; c < cells; ++c)
+    scanList<Grav, PX, PY>(i, first[c], best);
+}
+
+template <bool Grav, bool PX, bool PY>
+void HardDiskSystem::scanEdge(std::size_t i, std::uint32_t direction, Event& best) const {
+  // After a crossing: the row or column of three cells that just came within reach.
+  const long nx = static_cast<long>(nx_), ny = static_cast<long>(ny_);
+  const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
+  const long step = (direction % 2 == 0) ? -1 : 1;
+  for (long d = -1; d <= 1; ++d) {
+    long kx = direction < 2 ? cx + step : cx + d, ky = direction < 2 ? cy + d : cy + step;
+    if (kx < 0 || kx >= nx) {
+      if (!PX)
+        continue;
+      kx = kx < 0 ? nx - 1 : 0;
+    }
+    if (ky < 0 || ky >= ny) {
+      if (!PY)
+        continue;
+      ky = ky < 0 ? ny - 1 : 0;
+    }
+    scanList<Grav, PX, PY>(i, head_[static_cast<std::size_t>(ky * nx + kx)], best);
+  }
+}
+
+// The specialised scans for this box (gravity or not, periodic axes).
+void HardDiskSystem::chooseScans() {
+  const int kind = (p_.gravity != 0.0 ? 4 : 0) + (p_.periodicX ? 2 : 0) + (p_.periodicY ? 1 : 0);
+  switch (kind) {
+#define CK_SCANS(K, G, X, Y)                                                                                       \
+  case K:                                                                                                          \
+    scanBlock_ = &HardDiskSystem::scanBlock<G, X, Y>;                                                              \
+    scanEdge_ = &HardDiskSystem::scanEdge<G, X, Y>;                                                                \
+    break;
+    CK_SCANS(0, false, false, false)
+    CK_SCANS(1, false, false, true)
+    CK_SCANS(2, false, true, false)
+    CK_SCANS(3, false, true, true)
+    CK_SCANS(4, true, false, false)
+    CK_SCANS(5, true, false, true)
+    CK_SCANS(6, true, true, false)
+    CK_SCANS(7, true, true, true)
+#undef CK_SCANS
+  }
+}
+
 void HardDiskSystem::predict(std::size_t i) {
   Event best{kInf, 0, EventType::None, 0}; // the best pair event
-  const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
-  const long reach = reach_[i];
-  const long nx = static_cast<long>(nx_), ny = static_cast<long>(ny_);
-  if (reach == 1 && nx >= 3 && ny >= 3 && p_.growthRate == 0.0) {
-    // The common case, written out: a small disk, the 3x3 cells around it, no growth.
-    const Hot& a = h_[i];
-    const double g = p_.gravity, now = time_, W = p_.width, H = p_.height;
-    const bool px = p_.periodicX, py = p_.periodicY;
-    // The first disk of each of the 3x3 cells, their records requested together (most cells
-    // hold zero or one disk, so this is most of the loads a prediction makes).
-    std::int32_t first[9];
-    int cells = 0;
-    for (long dy = -1; dy <= 1; ++dy) {
-      long ky = cy + dy;
-      if (ky < 0 || ky >= ny) {
-        if (!py)
-          continue;
-        ky = ky < 0 ? ny - 1 : 0;
-      }
-      for (long dx = -1; dx <= 1; ++dx) {
-        long kx = cx + dx;
-        if (kx < 0 || kx >= nx) {
-          if (!px)
-            continue;
-          kx = kx < 0 ? nx - 1 : 0;
-        }
-        const std::int32_t k = head_[static_cast<std::size_t>(ky * nx + kx)];
-        if (k >= 0) {
-          __builtin_prefetch(&h_[static_cast<std::size_t>(k)]);
-          first[cells++] = k;
-        }
-      }
-    }
-    for (int c = 0; c < cells; ++c) {
-      for (std::int32_t k = first[c]; k >= 0;) {
-        const std::size_t j = static_cast<std::size_t>(k);
-        const Hot& o = h_[j];
-        k = o.next;
-        if (j == i || isBig_[j])
-          continue;
-        const double dtj = now - o.t;
-        const double vyj = o.vy - g * dtj;
-        const double ux = o.vx - a.vx, uy = vyj - a.vy;
-        double rx = o.x + o.vx * dtj - a.x;
-        double ry = o.y + (o.vy - 0.5 * g * dtj) * dtj - a.y;
-        if (px)
-          rx = minimumImage(rx, W);
-        if (py)
-          ry = minimumImage(ry, H);
-        const double b = rx * ux + ry * uy;
-        if (b >= 0.0)
-          continue; // receding (a >= 0 without growth)
-        const double sigma = a.r + o.r;
-        const double c2 = rx * rx + ry * ry - sigma * sigma;
-        double tau = 0.0;
-        if (c2 > 0.0) {
-          const double uu = ux * ux + uy * uy, disc = b * b - uu * c2;
-          if (disc < 0.0)
-            continue;
-          tau = c2 / (-b + std::sqrt(disc));
-        }
-        if (now + tau < best.t)
-          best = Event{now + tau, static_cast<std::uint32_t>(j), EventType::Pair, o.count};
-      }
-    }
+  if (fastScan(i)) {
+    (this->*scanBlock_)(i, best);
   } else {
     forNearby(i, [&](std::size_t j) {
-      if (j != i && !isBig_[j])
+      if (j != i)
         consider(i, j, best);
     });
   }
@@ -464,35 +532,11 @@ void HardDiskSystem::predictAfterCrossing(std::size_t i, std::uint32_t direction
   // with it: keep the best of them (if its partner has not collided since) and scan only the
   // row or column of cells that just came within reach.
   Event best = pairBest_[i];
-  const bool fast = reach_[i] == 1 && nx_ >= 3 && ny_ >= 3 && p_.growthRate == 0.0;
-  if (!fast || (best.type == EventType::Pair && h_[best.partner].count != best.partnerCount)) {
+  if (!fastScan(i) || (best.type == EventType::Pair && h_[best.partner].count != best.partnerCount)) {
     predict(i);
     return;
   }
-  const long nx = static_cast<long>(nx_), ny = static_cast<long>(ny_);
-  const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
-  auto scan = [&](long kx, long ky) {
-    if (kx < 0 || kx >= nx) {
-      if (!p_.periodicX)
-        return;
-      kx = kx < 0 ? nx - 1 : 0;
-    }
-    if (ky < 0 || ky >= ny) {
-      if (!p_.periodicY)
-        return;
-      ky = ky < 0 ? ny - 1 : 0;
-    }
-    for (std::int32_t k = head_[static_cast<std::size_t>(ky * nx + kx)]; k >= 0; k = h_[static_cast<std::size_t>(k)].next)
-      if (static_cast<std::size_t>(k) != i && !isBig_[static_cast<std::size_t>(k)])
-        consider(i, static_cast<std::size_t>(k), best);
-  };
-  const long step = (direction % 2 == 0) ? -1 : 1;
-  for (long d = -1; d <= 1; ++d) {
-    if (direction < 2)
-      scan(cx + step, cy + d);
-    else
-      scan(cx + d, cy + step);
-  }
+  (this->*scanEdge_)(i, direction, best);
   pairBest_[i] = best;
   cellEvent(i, best);
   wallEvent(i, best);
@@ -514,9 +558,9 @@ void HardDiskSystem::collide(std::size_t i, std::size_t j) {
   stream(j);
   double rx = h_[j].x - h_[i].x, ry = h_[j].y - h_[i].y;
   if (p_.periodicX)
-    rx -= p_.width * std::round(rx / p_.width);
+    rx = minimumImage(rx, p_.width);
   if (p_.periodicY)
-    ry -= p_.height * std::round(ry / p_.height);
+    ry = minimumImage(ry, p_.height);
   const double dist = std::sqrt(rx * rx + ry * ry);
   const double nx = rx / dist, ny = ry / dist;
   const double approach = (h_[i].vx - h_[j].vx) * nx + (h_[i].vy - h_[j].vy) * ny;
@@ -533,7 +577,8 @@ void HardDiskSystem::collide(std::size_t i, std::size_t j) {
   virial_ += sigma0 * growth(time_) * J;
   ++h_[i].count;
   ++h_[j].count;
-  lastCollision_[i] = lastCollision_[j] = time_;
+  if (p_.tcTime > 0.0)
+    lastCollision_[i] = lastCollision_[j] = time_;
   ++pairCollisions_;
   if (sourceMaterial_ >= 0 && (disturbed_[i] || disturbed_[j]))
     disturbed_[i] = disturbed_[j] = 1;
@@ -561,7 +606,8 @@ void HardDiskSystem::hitWall(std::size_t i, std::uint32_t wall) {
   }
   v = away * out;
   ++h_[i].count;
-  lastCollision_[i] = time_;
+  if (p_.tcTime > 0.0)
+    lastCollision_[i] = time_;
   ++wallCollisions_;
   if (log_)
     log_->push_back(EventRecord{time_, EventType::Wall, static_cast<std::uint32_t>(i), wall});

@@ -118,6 +118,15 @@ private:
   double growth(double t) const { return 1.0 + p_.growthRate * t; }
   void stream(std::size_t i);
   void predict(std::size_t i);
+  // The common case (a small disk, the 3x3 cells, no growth), specialised for the box.
+  bool fastScan(std::size_t i) const { return gridFast_ && !isBig_[i]; }
+  template <bool Grav, bool PX, bool PY> void scanList(std::size_t i, std::int32_t k, Event& best) const;
+  template <bool Grav, bool PX, bool PY> void scanBlock(std::size_t i, Event& best) const;
+  template <bool Grav, bool PX, bool PY> void scanEdge(std::size_t i, std::uint32_t direction, Event& best) const;
+  void chooseScans();
+  void (HardDiskSystem::*scanBlock_)(std::size_t, Event&) const = nullptr;
+  void (HardDiskSystem::*scanEdge_)(std::size_t, std::uint32_t, Event&) const = nullptr;
+  bool gridFast_ = false;
   void predictAfterCrossing(std::size_t i, std::uint32_t direction);
   void consider(std::size_t i, std::size_t j, Event& best) const;
   void wallEvent(std::size_t i, Event& best) const;
