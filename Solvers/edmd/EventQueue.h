@@ -1,17 +1,17 @@
 // Future-event queue for event-driven MD: at most one pending event per disk, earliest first.
 //
 // A bounded priority queue after Paul (2007, J. Comput. Phys. 221:615), as DynamO uses it:
-// time is cut into buckets of equal width; a ring of buckets covers the near future and later
-// events wait in an overflow list. Each bucket is a list kept sorted on insertion, so the
-// earliest event is the head of the current bucket: with a few events per bucket the sorted
-// insertion walks one or two nodes, and popping is unlinking a head (the small heap of the
-// current bucket that the first version kept cost more than the rest of the queue together).
-// The bucket width adapts: it is quartered or quadrupled whenever a turn of the ring sees far
-// more or far fewer events than buckets.
+// time is cut into buckets of equal width; a ring of buckets covering the near future holds
+// unsorted lists, later events wait in an overflow list, and only the current bucket is kept
+// sorted, in a small binary heap. The bucket width adapts: it is quartered or quadrupled
+// whenever a turn of the ring sees far more or far fewer events than buckets.
 //
-// Nothing is ever searched for and removed: a disk's new event is inserted with the disk's
-// next generation number, and an entry whose generation is no longer the disk's is dropped
-// where it is met (at a bucket's head, or passed by an insertion).
+// The lists hold the events themselves, not disk indices, and nothing is ever unlinked: a
+// disk's new event is appended with the disk's next generation number, and an entry whose
+// generation is no longer the disk's is dropped when it is reached. Scheduling is an append,
+// draining a bucket a sequential read, and the heap compares times it holds, so the queue
+// touches no other disk's record (the doubly linked lists it replaced missed the cache on
+// both neighbours of every disk they moved).
 //
 // Ordering is exact: the earliest time wins, ties go to the lower disk index. Payload is any
 // event type with a member `double t`.
@@ -39,8 +39,16 @@ public:
     buckets_ = 64;
     while (buckets_ < n)
       buckets_ *= 2;
+    head_.assign(buckets_, -1);
+    pool_.clear();
+    free_ = -1;
+    waiting_.clear();
+    heap_.clear();
+    listed_ = 0;
     width_ = 1.0;
-    clear(now);
+    current_ = bucketOf(now);
+    turnStart_ = current_;
+    popped_ = 0;
   }
 
   // Sizes the buckets from the pending events: about two per bucket over their mean horizon.
@@ -65,11 +73,11 @@ public:
   // The earliest event, or nullptr if there is none. Valid until the next call of any member.
   const Item* top() {
     while (true) {
-      std::int32_t& head = head_[slotOf(current_)];
-      while (head >= 0 && !valid(pool_[static_cast<std::size_t>(head)].item))
-        head = release(head);
-      if (head >= 0)
-        return &pool_[static_cast<std::size_t>(head)].item;
+      while (!heap_.empty()) {
+        if (valid(heap_.front()))
+          return &heap_.front();
+        heapPop();
+      }
       if (listed_ == 0) {
         // Nothing in the ring: jump to the earliest waiting event, if any is still valid.
         double tmin = kInf;
@@ -80,7 +88,7 @@ public:
           waiting_.clear();
           return nullptr;
         }
-        current_ = bucketOf(tmin);
+        current_ = bucketOf(tmin) - 1;
         turnStart_ = current_;
         refill();
         continue;
@@ -97,27 +105,32 @@ public:
         }
         refill();
       }
+      // The current bucket's valid events go into the heap.
+      std::int32_t& head = head_[slotOf(current_)];
+      for (std::int32_t k = head; k >= 0;) {
+        Node& node = pool_[static_cast<std::size_t>(k)];
+        const std::int32_t following = node.next;
+        if (valid(node.item))
+          heapPush(node.item);
+        node.next = free_;
+        free_ = k;
+        --listed_;
+        k = following;
+      }
+      head = -1;
     }
   }
 
   // Removes the event top() returned.
   void pop() {
-    std::int32_t& head = head_[slotOf(current_)];
-    head = release(head);
+    heapPop();
     ++popped_;
   }
 
 private:
   static constexpr double kInf = std::numeric_limits<double>::infinity();
-  struct Node {
-    Item item;
-    std::int32_t next;
-  };
 
   bool valid(const Item& it) const { return gen_[it.disk] == it.gen; }
-  static bool before(const Item& a, const Item& b) {
-    return a.event.t < b.event.t || (a.event.t == b.event.t && a.disk < b.disk);
-  }
 
   std::int64_t bucketOf(double t) const {
     const double b = std::floor(t / width_);
@@ -126,17 +139,11 @@ private:
   std::size_t slotOf(std::int64_t b) const {
     return static_cast<std::size_t>(b & static_cast<std::int64_t>(buckets_ - 1)); // buckets_ is a power of 2
   }
-  // Frees node k (recently freed nodes, still in cache, are reused first); returns its successor.
-  std::int32_t release(std::int32_t k) {
-    Node& node = pool_[static_cast<std::size_t>(k)];
-    const std::int32_t next = node.next;
-    node.next = free_;
-    free_ = k;
-    --listed_;
-    return next;
-  }
 
   template <class F> void forEachValid(F&& f) const {
+    for (const Item& it : heap_)
+      if (valid(it))
+        f(it);
     for (std::int32_t h : head_)
       for (std::int32_t k = h; k >= 0; k = pool_[static_cast<std::size_t>(k)].next)
         if (valid(pool_[static_cast<std::size_t>(k)].item))
@@ -146,7 +153,10 @@ private:
         f(it);
   }
 
-  void clear(double now) {
+  void rebuild(double width, double now) {
+    std::vector<Item> all;
+    forEachValid([&](const Item& it) { all.push_back(it); });
+    width_ = width;
     current_ = bucketOf(now);
     turnStart_ = current_;
     popped_ = 0;
@@ -154,14 +164,8 @@ private:
     pool_.clear();
     free_ = -1;
     waiting_.clear();
+    heap_.clear();
     listed_ = 0;
-  }
-
-  void rebuild(double width, double now) {
-    std::vector<Item> all;
-    forEachValid([&](const Item& it) { all.push_back(it); });
-    width_ = width;
-    clear(now);
     for (const Item& it : all)
       insert(it);
   }
@@ -182,36 +186,37 @@ private:
   }
 
   void insert(const Item& it) {
-    // Never before the current bucket (events are not scheduled in the past; a time that
-    // rounds into an earlier bucket belongs to the current one).
-    const std::int64_t b = std::max(bucketOf(it.event.t), current_);
-    if (b >= current_ + static_cast<std::int64_t>(buckets_)) {
-      waiting_.push_back(it);
-      return;
-    }
-    std::int32_t k = free_;
-    if (k >= 0) {
-      free_ = pool_[static_cast<std::size_t>(k)].next;
-    } else {
-      k = static_cast<std::int32_t>(pool_.size());
-      pool_.emplace_back();
-    }
-    ++listed_;
-    pool_[static_cast<std::size_t>(k)].item = it;
-    // Sorted insertion, dropping the void entries passed on the way.
-    std::int32_t* link = &head_[slotOf(b)];
-    while (*link >= 0) {
-      const Item& other = pool_[static_cast<std::size_t>(*link)].item;
-      if (!valid(other)) {
-        *link = release(*link);
-        continue;
+    const std::int64_t b = bucketOf(it.event.t);
+    if (b <= current_) {
+      heapPush(it);
+    } else if (b < current_ + static_cast<std::int64_t>(buckets_)) {
+      std::int32_t k = free_;
+      if (k >= 0) {
+        free_ = pool_[static_cast<std::size_t>(k)].next;
+      } else {
+        k = static_cast<std::int32_t>(pool_.size());
+        pool_.emplace_back();
       }
-      if (before(it, other))
-        break;
-      link = &pool_[static_cast<std::size_t>(*link)].next;
+      std::int32_t& head = head_[slotOf(b)];
+      pool_[static_cast<std::size_t>(k)] = Node{it, head};
+      head = k;
+      ++listed_;
+    } else {
+      waiting_.push_back(it);
     }
-    pool_[static_cast<std::size_t>(k)].next = *link;
-    *link = k;
+  }
+
+  // A min-heap on (time, disk).
+  static bool later(const Item& a, const Item& b) {
+    return a.event.t > b.event.t || (a.event.t == b.event.t && a.disk > b.disk);
+  }
+  void heapPush(const Item& it) {
+    heap_.push_back(it);
+    std::push_heap(heap_.begin(), heap_.end(), later);
+  }
+  void heapPop() {
+    std::pop_heap(heap_.begin(), heap_.end(), later);
+    heap_.pop_back();
   }
 
   std::size_t buckets_ = 64, listed_ = 0;
@@ -219,10 +224,17 @@ private:
   std::int64_t current_ = 0, turnStart_ = 0;
   std::uint64_t popped_ = 0;
   std::vector<std::uint32_t> gen_;
-  std::vector<Node> pool_;    // the ring's nodes, with a free list
+  // The ring's lists: singly linked nodes in a pool with a free list (recently freed nodes,
+  // still in cache, are reused first).
+  struct Node {
+    Item item;
+    std::int32_t next;
+  };
+  std::vector<Node> pool_;
   std::int32_t free_ = -1;
   std::vector<std::int32_t> head_;
   std::vector<Item> waiting_; // beyond the ring
+  std::vector<Item> heap_;
 };
 
 } // namespace craterkit
