@@ -27,6 +27,7 @@ crater off the scaled result (README, "The SCI example").
 """
 
 import argparse
+import json
 import math
 import os
 import sys
@@ -289,8 +290,17 @@ def main(argv):
                                ResumeFromCheckpoint=1 if args.resume else 0)
     profile = simple.CraterProfile(Input=dem, SurfaceFromInput=0, SurfaceHeight=surface)
     start = time.time()
+    # Each frame's measures are saved as it completes, and each requested frame leaves its
+    # state in the checkpoint: --resume goes on from the first frame not yet done.
+    growth_file = os.path.join(args.output_dir, "dem_growth.json")
     growth = []
+    if args.resume and os.path.exists(growth_file) and os.path.exists(checkpoint):
+        growth = [g for g in json.load(open(growth_file)) if g["time_s"] <= frames[-1]]
+        if growth:
+            say(f"      resuming after t = {growth[-1]['time_s']:.4g} s ({len(growth)} frames done)")
     for t in frames:
+        if any(abs(g["time_s"] - t) <= 1e-9 * max(1.0, t) for g in growth):
+            continue
         data = fetch_stage(dem, "DEM stage", t)
         m = crater_measures(profile, t)
         now = totals(data, grain_radius)
@@ -300,8 +310,10 @@ def main(argv):
         say(f"      t = {t:.4g} s, {int(field_value(data, 'Step'))} steps, {time.time() - start:.0f} s: "
             f"crater diameter {growth[-1]['diameter_m']:.3g} m, depth {m['depth']:.3g} m; bed kinetic energy "
             f"{now['bed_kinetic_energy_J']:.3g} J, {now['ejecta_in_flight']} ejecta in flight")
+        with open(growth_file, "w") as f:
+            json.dump(growth, f)
     seconds["dem"] = round(time.time() - start, 1)
-    dem_data = fetch(dem)
+    dem_data = fetch_stage(dem, "DEM stage", frames[-1])
     measures = crater_measures(profile, frames[-1])
 
     say("[5/5] pictures and report")

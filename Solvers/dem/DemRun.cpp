@@ -35,9 +35,29 @@ const DemSolver& DemRun::advanceTo(double time, const ProgressCallback& progress
     }
   }
   if (target > solver_->stepCount()) {
-    solver_->advanceTo(static_cast<double>(target) * dt, progress, checkpointPath, checkpointEvery);
+    const long long start = solver_->stepCount();
+    // Behind the checkpoint file's state: no checkpoint until it is passed.
+    const long long quiet = checkpointPath.empty() ? start : std::min(target, std::max(start, checkpointStep_));
+    const auto part = [&](long long from, long long to) -> ProgressCallback {
+      if (!progress)
+        return {};
+      return [&progress, from, to, start, target](double f) {
+        return progress((static_cast<double>(from - start) + f * static_cast<double>(to - from)) /
+                        static_cast<double>(target - start));
+      };
+    };
+    if (quiet > start)
+      solver_->advanceTo(static_cast<double>(quiet) * dt, part(start, quiet));
+    if (target > solver_->stepCount())
+      solver_->advanceTo(static_cast<double>(target) * dt, part(solver_->stepCount(), target), checkpointPath,
+                         checkpointEvery);
     while (solver_->stepCount() < target) // advanceTo rounds to whole steps
       solver_->step();
+    if (!checkpointPath.empty() && (checkpointEvery <= 0 || solver_->stepCount() % checkpointEvery != 0) &&
+        solver_->stepCount() > checkpointStep_)
+      solver_->writeCheckpoint(checkpointPath); // every requested state is recoverable
+    if (!checkpointPath.empty())
+      checkpointStep_ = std::max(checkpointStep_, solver_->stepCount());
   }
   keep();
   return *solver_;
@@ -47,6 +67,7 @@ void DemRun::resumeFrom(const std::string& checkpointPath) {
   solver_ = std::make_unique<DemSolver>(DemSolver::readCheckpoint(checkpointPath));
   params_ = solver_->params();
   kept_.clear();
+  checkpointStep_ = solver_->stepCount();
 }
 
 } // namespace craterkit

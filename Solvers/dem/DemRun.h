@@ -3,6 +3,11 @@
 // Holds the initial state, advances the solver to any later time, and keeps serialized
 // snapshots of earlier output times so that a request for an earlier time restarts from
 // the nearest kept snapshot (or from the initial state), never from a stale state.
+//
+// With a checkpoint file, the file is written every checkpointEvery steps and at the end of
+// every request, and it is never overwritten by an earlier state: a request for a time before
+// the file's (after a resume, or after going back) is served by a run from the start that
+// writes no checkpoint until it has passed the file's step again.
 #pragma once
 
 #include "DemSolver.h"
@@ -24,6 +29,9 @@ public:
                              const std::string& checkpointPath = {}, long long checkpointEvery = 0);
   // Continues from a checkpoint file written by an earlier run of the same set-up.
   void resumeFrom(const std::string& checkpointPath);
+  // Simulation time of the furthest state written to or resumed from the checkpoint file
+  // (negative if none).
+  double checkpointTime() const { return checkpointStep_ < 0 ? -1.0 : startTime_ + checkpointStep_ * params_.dt; }
 
   double time() const { return startTime_ + solver_->time(); }
   const DemSolver& solver() const { return *solver_; }
@@ -37,6 +45,7 @@ private:
   std::size_t keptStates_;
   std::unique_ptr<DemSolver> solver_;
   std::map<long long, std::string> kept_; // step -> checkpoint bytes
+  long long checkpointStep_ = -1;         // step of the state in the checkpoint file
 };
 
 } // namespace craterkit

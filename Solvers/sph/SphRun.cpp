@@ -107,15 +107,20 @@ const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress
   while (solver_->time() < time) {
     const double dt = std::min(solver_->stableStep(), time - solver_->time());
     solver_->step(dt);
-    if (!checkpointPath.empty() && checkpointEvery > 0 &&
+    // A state behind the file's (a request for an earlier time) never overwrites it.
+    if (!checkpointPath.empty() && checkpointEvery > 0 && solver_->time() > checkpointTime_ &&
         solver_->steps() - lastCheckpoint >= static_cast<std::size_t>(checkpointEvery)) {
       writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep());
       lastCheckpoint = solver_->steps();
+      checkpointTime_ = solver_->time();
     }
     reportProgress(progress, (solver_->time() - from) / (time - from));
   }
-  if (!checkpointPath.empty() && checkpointEvery > 0 && solver_->steps() != lastCheckpoint)
+  if (!checkpointPath.empty() && checkpointEvery > 0 && solver_->steps() != lastCheckpoint &&
+      solver_->time() > checkpointTime_) {
     writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep());
+    checkpointTime_ = solver_->time();
+  }
   keep();
   return *solver_;
 }
@@ -133,6 +138,7 @@ void SphRun::resumeFrom(const std::string& checkpointPath) {
   solver_ = std::make_unique<SphSolver>(s, params_);
   solver_->restore(t, steps, next);
   kept_.clear();
+  checkpointTime_ = t;
 }
 
 } // namespace craterkit

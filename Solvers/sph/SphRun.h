@@ -11,6 +11,7 @@
 #include "common/Progress.h"
 #include "sph/SphSolver.h"
 
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -40,6 +41,7 @@ private:
   std::size_t keptStates_;
   std::unique_ptr<SphSolver> solver_;
   std::map<double, Snapshot> kept_;
+  double checkpointTime_ = -std::numeric_limits<double>::infinity(); // of the state in the checkpoint file
 };
 
 // Checkpoint files: "CKSPH1\n\0", particle count and steps (uint64), time and the next time

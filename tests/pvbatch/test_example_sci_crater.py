@@ -3,7 +3,8 @@
 the crater's diameter is within 35 % of the pi-scaling prediction for the run's own parameters,
 the hand-off carried the compact SPH material's momentum over exactly and the dropped ejecta
 account for the rest, the DEM bed lost energy as it settled, the pi-scaling prediction agrees
-with the values computed by hand in PHYSICS.md section 4.2, and the pictures and report exist."""
+with the values computed by hand in PHYSICS.md section 4.2, and the pictures and report exist;
+then that a run resumed after its first frame continues from the checkpoint."""
 
 import json
 import os
@@ -56,4 +57,28 @@ for image in r["images"]:
 md = open(os.path.join(out, "report.md")).read()
 t.check("pi_scaling_diameter_m" in md and "figure1_handoff.png" in md, "report.md lacks the prediction or a figure")
 print(f"crater diameter {r['crater_diameter_m']} m vs pi-scaling {r['pi_scaling_diameter_m']} m")
+
+# Resuming: a run stopped after its first frame goes on from the checkpoint, which holds the
+# last requested state, and does not recompute it (the checkpoint stays as it was) or overwrite
+# it; the crater is the same to the last bit. The SPH stage is the one saved by the first run.
+import hashlib  # noqa: E402
+checkpoint = os.path.join(out, "dem.ckdem")
+growth_file = os.path.join(out, "dem_growth.json")
+t.check(os.path.isfile(checkpoint) and os.path.isfile(growth_file), "no checkpoint or frame record written")
+if os.path.isfile(growth_file):
+    growth = json.load(open(growth_file))
+    t.check(len(growth) == 2, f"{len(growth)} frames recorded, 2 expected")
+    json.dump(growth[:1], open(growth_file, "w"))
+    before = hashlib.sha256(open(checkpoint, "rb").read()).hexdigest()
+    code = run_example(source_dir, "sci_crater", ["--particles", "1500", "--frames", "2", "--width", "500",
+                                                  "--output-dir", out, "--resume",
+                                                  "--sph-state", os.path.join(out, "sph_handoff.vtp")])
+    t.check(code == 0, f"resumed example exited with {code}")
+    again = json.load(open(os.path.join(out, "report.json")))
+    t.check(hashlib.sha256(open(checkpoint, "rb").read()).hexdigest() == before,
+            "the resumed run rewrote the checkpoint (it recomputed the DEM stage)")
+    t.check(again["crater_diameter_m"] == r["crater_diameter_m"] and again["crater_depth_m"] == r["crater_depth_m"],
+            f"resumed crater {again['crater_diameter_m']} m, {again['crater_depth_m']} m against "
+            f"{r['crater_diameter_m']} m, {r['crater_depth_m']} m")
+    t.check(again["crater_growth"] == growth, "the resumed run's frame record differs")
 sys.exit(t.close())

@@ -2,13 +2,17 @@
 #include "bed/GranularBed.h"
 #include "common/Error.h"
 #include "common/Random.h"
+#include "dem/DemRun.h"
 #include "dem/DemSolver.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <set>
 #include <sstream>
 
@@ -340,6 +344,45 @@ TEST(DemRestart, ResumedRunIsBitIdentical) {
   EXPECT_EQ(resumed.particles().velocity, straight.particles().velocity);
   EXPECT_EQ(resumed.particles().angularVelocity, straight.particles().angularVelocity);
   EXPECT_GT(straight.diagnostics().contacts, 50u);
+}
+
+// A run resumed from its checkpoint file and then asked for an earlier time (a script that
+// walks its output times from the start again) recomputes that time from the initial state
+// and must not overwrite the file with the earlier state; every requested state is written.
+TEST(DemRestart, EarlierRequestsNeverOverwriteALaterCheckpoint) {
+  const ParticleSet s = jostledBlock(0.5, 7);
+  const DemParams p = frictionalBox();
+  const std::string path =
+    (std::filesystem::temp_directory_path() / ("ck_demrun_" + std::to_string(::getpid()) + ".ckdem")).string();
+  const auto stepInFile = [&] { return DemSolver::readCheckpoint(path).stepCount(); };
+  DemSolver straight(s, p);
+  std::vector<std::vector<double>> at(401);
+  for (int j = 0; j <= 400; ++j) {
+    at[j] = straight.particles().position;
+    straight.step();
+  }
+  {
+    DemRun first(s, p, 0.0, 0);
+    first.advanceTo(333 * p.dt, {}, path, 50);
+    EXPECT_EQ(stepInFile(), 333); // the requested state, not only the last multiple of 50
+    EXPECT_EQ(first.solver().particles().position, at[333]);
+  }
+  DemRun resumed(s, p, 0.0, 0);
+  resumed.resumeFrom(path);
+  EXPECT_NEAR(resumed.checkpointTime(), 333 * p.dt, 1e-12);
+  double reported = 0.0;
+  resumed.advanceTo(120 * p.dt, [&](double f) { reported = std::max(reported, f); return true; }, path, 50);
+  EXPECT_EQ(resumed.solver().stepCount(), 120);
+  EXPECT_EQ(resumed.solver().particles().position, at[120]);
+  EXPECT_EQ(stepInFile(), 333) << "an earlier state overwrote the checkpoint";
+  EXPECT_DOUBLE_EQ(reported, 1.0);
+  resumed.advanceTo(360 * p.dt, {}, path, 50); // passes the file's step: 350 and 360 are written
+  EXPECT_EQ(resumed.solver().particles().position, at[360]);
+  EXPECT_EQ(stepInFile(), 360);
+  resumed.advanceTo(400 * p.dt, {}, path, 50);
+  EXPECT_EQ(resumed.solver().particles().position, at[400]);
+  EXPECT_EQ(stepInFile(), 400);
+  std::remove(path.c_str());
 }
 
 TEST(DemRestart, ThreadCountDoesNotChangeResults) {

@@ -106,6 +106,18 @@ TEST(SphImpact, CheckpointAndResumeContinueTheRun) {
   SphRun resumed(prob.state, prob.params);
   resumed.resumeFrom(path);
   EXPECT_DOUBLE_EQ(resumed.time(), t1);
+  {
+    // Asked for an earlier time, the resumed run recomputes it from the start and leaves the
+    // checkpoint, which holds a later state, as it was.
+    SphRun again(prob.state, prob.params);
+    again.resumeFrom(path);
+    EXPECT_DOUBLE_EQ(again.advanceTo(0.5 * t1, {}, path, 1).time(), 0.5 * t1);
+    EXPECT_EQ(readSphCheckpoint(path, tc, steps, next).size(), prob.state.size());
+    EXPECT_DOUBLE_EQ(tc, t1) << "an earlier state overwrote the checkpoint";
+    again.advanceTo(1.5 * t1, {}, path, 1000000); // past the file's state: written again
+    readSphCheckpoint(path, tc, steps, next);
+    EXPECT_DOUBLE_EQ(tc, 1.5 * t1);
+  }
   resumed.advanceTo(t2);
   const SphState& a = straight.solver().state();
   const SphState& b = resumed.solver().state();
