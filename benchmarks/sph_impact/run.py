@@ -9,7 +9,7 @@ after a first run has compiled its kernels. CraterKit sums over the same neighbo
 C2 kernel with the reach of PySPH's Gaussian, 3h = 3.9 dx). Prints particle-steps per second
 and the ratio.
 
-    benchmarks/sph_impact/run.py                  # 100 steps; SCI-like 1e4..1e6 scaling
+    benchmarks/sph_impact/run.py                  # 100 steps; SCI-like scaling 1e3..5.4e5
     benchmarks/sph_impact/run.py --steps 50 --no-scaling
 """
 
