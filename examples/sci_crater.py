@@ -310,8 +310,9 @@ def main(argv):
         say(f"      t = {t:.4g} s, {int(field_value(data, 'Step'))} steps, {time.time() - start:.0f} s: "
             f"crater diameter {growth[-1]['diameter_m']:.3g} m, depth {m['depth']:.3g} m; bed kinetic energy "
             f"{now['bed_kinetic_energy_J']:.3g} J, {now['ejecta_in_flight']} ejecta in flight")
-        with open(growth_file, "w") as f:
+        with open(growth_file + ".part", "w") as f:  # replaced whole: a killed run leaves the last one
             json.dump(growth, f)
+        os.replace(growth_file + ".part", growth_file)
     seconds["dem"] = round(time.time() - start, 1)
     dem_data = fetch_stage(dem, "DEM stage", frames[-1])
     measures = crater_measures(profile, frames[-1])
