@@ -40,6 +40,8 @@ void SphParams::validate() const {
     throw InputError("SPH: kappa (support radius over particle spacing) must be in (1, 10)");
   if (!(courant > 0.0 && courant <= 1.0))
     throw InputError("SPH: the Courant number must be in (0, 1]");
+  if (!(densityFloor < 1.0))
+    throw InputError("SPH: the density floor must be below 1 (a fraction of the reference bulk density)");
   if (!(forceFactor > 0.0 && forceFactor <= 1.0))
     throw InputError("SPH: the force time-step factor must be in (0, 1]");
   if (!(errorTolerance > 0.0 && errorTolerance <= 1.0))
@@ -138,6 +140,9 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
     hCapFactor_.push_back(rho0 > 0.0 && par_.maxSmoothingGrowth > 0.0
                             ? par_.maxSmoothingGrowth * par_.kappa * std::cbrt(mat.distention / rho0)
                             : 0.0);
+    const double g = par_.maxSmoothingGrowth;
+    const double fraction = par_.densityFloor >= 0.0 ? par_.densityFloor : g > 0.0 ? 1.0 / (g * g * g) : 0.0;
+    rhoFloor_.push_back(rho0 > 0.0 ? fraction * rho0 / mat.distention : 0.0);
   }
   const std::size_t n = s_.size();
   if (n == 0)
@@ -1011,7 +1016,7 @@ double SphSolver::step(double dt) {
     }
     for (std::size_t i = 0; i < n; ++i) {
       if (!par_.summationDensity)
-        mid.rho[i] = std::max(1e-6 * s_.rho[i], mid.rho[i] + dt * k1_.drho[i]);
+        mid.rho[i] = std::max({floorOf(s_, i), 1e-6 * s_.rho[i], mid.rho[i] + dt * k1_.drho[i]});
       mid.u[i] = std::max(0.0, mid.u[i] + dt * k1_.du[i]);
     }
     for (std::size_t i = 0; i < 6 * n; ++i)
@@ -1032,7 +1037,13 @@ double SphSolver::step(double dt) {
       }
       const double c = c_[i];
       const double ev = 0.5 * dt * std::sqrt(dv2) / std::max({c, std::sqrt(v2), 1e-30});
-      const double er = par_.summationDensity ? 0.0 : 0.5 * dt * std::abs(k2.drho[i] - k1_.drho[i]) / s_.rho[i];
+      // Density: Heun's against Euler's, both held at the floor (material dilating below it
+      // sets no step).
+      const double fl = floorOf(s_, i);
+      const double er = par_.summationDensity
+                          ? 0.0
+                          : std::abs(std::max(fl, s_.rho[i] + 0.5 * dt * (k1_.drho[i] + k2.drho[i])) -
+                                     std::max(fl, s_.rho[i] + dt * k1_.drho[i])) / s_.rho[i];
       const double eu = 0.5 * dt * std::abs(k2.du[i] - k1_.du[i]) / (s_.u[i] + c * c + 1e-30);
       const double e = std::max({ev, er, eu});
       if (e > err)
@@ -1048,7 +1059,7 @@ double SphSolver::step(double dt) {
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (!par_.summationDensity)
-      s_.rho[i] += 0.5 * dt * (k1_.drho[i] + k2.drho[i]);
+      s_.rho[i] = std::max(floorOf(s_, i), s_.rho[i] + 0.5 * dt * (k1_.drho[i] + k2.drho[i]));
     s_.u[i] = std::max(0.0, s_.u[i] + 0.5 * dt * (k1_.du[i] + k2.du[i]));
     s_.alpha[i] = mid.alpha[i]; // compaction is kept from the predictor and can go on below
     if (!(s_.rho[i] > 0.0) || !std::isfinite(s_.rho[i]) || !std::isfinite(s_.u[i]))

@@ -48,6 +48,12 @@ struct SphParams {
   // (ρ0/α0; solids only, 0: no cap). Without it a spray of expanding ejecta gets ever larger
   // h, which sizes the neighbour cells for everyone and forces a new list every step.
   double maxSmoothingGrowth = 2.0;
+  // The integrated density of a solid is held at or above this fraction of its material's
+  // reference bulk density ρ0/α0 (negative: 1/maxSmoothingGrowth³, where h stops growing;
+  // 0: no floor). Dilated material (a cohesionless bed torn apart, p = 0) otherwise keeps
+  // losing density while it moves against its neighbours, without bound: its volume m/ρ then
+  // dominates the neighbours' velocity gradients, and at last its density goes negative.
+  double densityFloor = -1.0;
   double courant = 0.3;
   double forceFactor = 0.2;        // Δt ≤ forceFactor sqrt(h / |a|)
   std::uint64_t fractureSeed = 1;  // random assignment of Grady–Kipp flaws to particles
@@ -144,6 +150,8 @@ private:
   std::vector<std::uint32_t> flawStart_; // Grady–Kipp activation strains per particle (CSR, ascending)
   std::vector<double> flawEps_;
   std::vector<double> hCapFactor_; // per material: κ (α0/ρ0)^{1/3} × the growth cap (0: none)
+  std::vector<double> rhoFloor_;   // per material: the density floor, kg/m³ (0: none)
+  double floorOf(const SphState& s, std::size_t i) const { return rhoFloor_[static_cast<std::size_t>(s.material[i])]; }
   Rates k1_;                   // rates of the current state
   SphState mid_;               // the predictor stage (members: reused, not reallocated, each step)
   Rates k2_;

@@ -317,6 +317,54 @@ TEST(SphSolid, LateStageSchemeKeepsTheGranularFlowWithLongSteps) {
   EXPECT_NEAR(late.angle, 30.0, 5.0);
 }
 
+// Dilated regolith is held at the density floor: a cube of the library's regolith (p = 0 in
+// tension, no cohesion: no force acts) in homologous expansion v = A x to three times its
+// size. Continuity gives rho = rho_b / (1 + A t)^3 while that is above the floor rho_b / 8
+// (rho_b = rho0 / alpha0, where h stops growing); below it the density is held there (without
+// the floor it falls towards rho_b / 27). The particles fly on unchanged.
+TEST(SphSolid, DilatedRegolithIsHeldAtTheDensityFloor) {
+  const Material reg = libraryMaterial("regolith");
+  const double rhoB = reg.eos.tillotson.rho0 / reg.distention, dx = 0.01, A = 1000.0, m = rhoB * dx * dx * dx;
+  SphParams par;
+  par.materials = {reg};
+  SphState s;
+  const int n = 10;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const double x[3] = {(i - 0.5 * (n - 1)) * dx, (j - 0.5 * (n - 1)) * dx, (k - 0.5 * (n - 1)) * dx};
+        const double v[3] = {A * x[0], A * x[1], A * x[2]};
+        s.add(x, v, m, rhoB, 0.0, 0);
+      }
+  const SphState start = s;
+  SphSolver solver(s, par);
+  std::size_t centre = 0; // the particle nearest the middle
+  for (std::size_t i = 0; i < start.size(); ++i)
+    if (std::hypot(start.x[3 * i], start.x[3 * i + 1], start.x[3 * i + 2]) <
+        std::hypot(start.x[3 * centre], start.x[3 * centre + 1], start.x[3 * centre + 2]))
+      centre = i;
+  const double t1 = 0.5 / A; // (1 + A t)^3 = 3.375: above the floor
+  solver.advanceTo(t1);
+  const double mid = solver.state().rho[centre] / rhoB;
+  solver.advanceTo(2.0 / A); // three times the size: 1/27 without the floor
+  const SphState& end = solver.state();
+  double lowest = INFINITY, dv = 0.0;
+  std::size_t atFloor = 0;
+  for (std::size_t i = 0; i < end.size(); ++i) {
+    lowest = std::min(lowest, end.rho[i] / rhoB);
+    atFloor += std::abs(end.rho[i] / rhoB - 0.125) < 1e-12;
+    for (int k = 0; k < 3; ++k)
+      dv = std::max(dv, std::abs(end.v[3 * i + k] - start.v[3 * i + k]));
+  }
+  std::printf("centre at (1 + At)^3 = 3.375: rho / rho_b %.4f (continuity %.4f); at 27: lowest %.4f, %zu of %zu at "
+              "the floor; largest velocity change %.3g m/s\n",
+              mid, 1.0 / 3.375, lowest, atFloor, end.size(), dv);
+  EXPECT_NEAR(mid, 1.0 / 3.375, 0.05 / 3.375);
+  EXPECT_GE(lowest, 0.125 * (1.0 - 1e-12));
+  EXPECT_GT(atFloor, end.size() / 4); // the interior (edge particles lose density slower)
+  EXPECT_LT(dv, 1e-9 * A * dx);       // no force: p = 0 and no shear stress at p = 0
+}
+
 // Elastic solid: two aluminium spheres (yield raised so that they stay elastic) collide head
 // on at 40 m/s and rebound. Checks: they separate moving apart (restitution well above 0),
 // no particle runs away (a tensile instability would throw particles off at many times the
