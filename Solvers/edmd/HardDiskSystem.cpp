@@ -28,6 +28,15 @@ inline double minimumImage(double d, double length) {
   return d;
 }
 
+// A cell index along an axis of n cells, wrapped on a periodic axis; -1 beyond a wall.
+template <bool Periodic> inline long wrapCell(long k, long n) {
+  if (k >= 0 && k < n)
+    return k;
+  if constexpr (Periodic)
+    return k < 0 ? n - 1 : 0;
+  return -1;
+}
+
 // Distinct cell indices within `reach` of c along an axis of n cells.
 template <class F> void forAxisCells(long c, long reach, long n, bool periodic, F&& f) {
   if (periodic && 2 * reach + 1 >= n) {
@@ -397,7 +406,7 @@ template <bool Grav, bool PX, bool PY>
 __attribute__((always_inline)) inline void HardDiskSystem::scanList(std::size_t i, std::int32_t k, Event& best) const {
   const Hot& a = h_[i];
   const double g = p_.gravity, now = time_;
-  const double W = p_.width, H = p_.height, hW = 0.5 * W, hH = 0.5 * H;
+  const double W = p_.width, H = p_.height;
   while (k >= 0) {
     const std::size_t j = static_cast<std::size_t>(k);
     const Hot& o = h_[j];
@@ -414,9 +423,9 @@ __attribute__((always_inline)) inline void HardDiskSystem::scanList(std::size_t 
       uy = o.vy - a.vy;
     }
     if constexpr (PX) // nearest image (rarely another: the branch is predicted)
-      rx = rx > hW ? rx - W : rx < -hW ? rx + W : rx;
+      rx = minimumImage(rx, W);
     if constexpr (PY)
-      ry = ry > hH ? ry - H : ry < -hH ? ry + H : ry;
+      ry = minimumImage(ry, H);
     const double ux = o.vx - a.vx;
     const double b = rx * ux + ry * uy;
     if (b >= 0.0)
@@ -443,19 +452,15 @@ template <bool Grav, bool PX, bool PY> void HardDiskSystem::scanBlock(std::size_
   const long nx = static_cast<long>(nx_), ny = static_cast<long>(ny_), none = nx * ny;
   long col[3], row[3];
   for (int d = 0; d < 3; ++d) {
-    long kx = cx + d - 1, ky = cy + d - 1;
-    if constexpr (PX)
-      kx = kx < 0 ? nx - 1 : kx >= nx ? 0 : kx;
-    if constexpr (PY)
-      ky = ky < 0 ? ny - 1 : ky >= ny ? 0 : ky;
-    col[d] = kx;
-    row[d] = ky * nx;
+    col[d] = wrapCell<PX>(cx + d - 1, nx);
+    const long ky = wrapCell<PY>(cy + d - 1, ny);
+    row[d] = ky < 0 ? -1 : ky * nx;
   }
   std::int32_t first[9];
   int cells = 0;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) {
-      const bool inside = (PX || (col[c] >= 0 && col[c] < nx)) && (PY || (row[r] >= 0 && row[r] < none));
+      const bool inside = col[c] >= 0 && row[r] >= 0;
       const std::int32_t k = head_[static_cast<std::size_t>(inside ? row[r] + col[c] : none)];
       __builtin_prefetch(&h_[static_cast<std::size_t>(k < 0 ? 0 : k)]);
       first[cells] = k;
@@ -472,17 +477,10 @@ void HardDiskSystem::scanEdge(std::size_t i, std::uint32_t direction, Event& bes
   const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
   const long step = (direction % 2 == 0) ? -1 : 1;
   for (long d = -1; d <= 1; ++d) {
-    long kx = direction < 2 ? cx + step : cx + d, ky = direction < 2 ? cy + d : cy + step;
-    if (kx < 0 || kx >= nx) {
-      if (!PX)
-        continue;
-      kx = kx < 0 ? nx - 1 : 0;
-    }
-    if (ky < 0 || ky >= ny) {
-      if (!PY)
-        continue;
-      ky = ky < 0 ? ny - 1 : 0;
-    }
+    const long kx = wrapCell<PX>(direction < 2 ? cx + step : cx + d, nx);
+    const long ky = wrapCell<PY>(direction < 2 ? cy + d : cy + step, ny);
+    if (kx < 0 || ky < 0)
+      continue;
     scanList<Grav, PX, PY>(i, head_[static_cast<std::size_t>(ky * nx + kx)], best);
   }
 }
