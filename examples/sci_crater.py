@@ -37,7 +37,7 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkObject
 
-from craterkit import fetch, fetch_stage, field_value, load_plugin, material_value
+from craterkit import fetch, fetch_stage, field_value, load_plugin, material_value, print_progress
 from craterkit.cross_section import crater_measures, render_cross_section
 from craterkit.figures import handoff_figure, profile_plot
 from craterkit.report import write_report
@@ -99,7 +99,7 @@ def parse_args(argv):
     g.add_argument("--frames", type=int, default=6, help="DEM outputs (progress and the crater's growth)")
     g.add_argument("--max-overlap", type=float, default=0.01, help="allowed overlap, fraction of a radius")
     g.add_argument("--checkpoint", default="", help="DEM checkpoint file; default OUTPUT_DIR/dem.ckdem")
-    g.add_argument("--resume", action="store_true", help="continue the DEM stage from the checkpoint")
+    g.add_argument("--resume", action="store_true", help="continue from the checkpoints: the SPH stage (or its saved hand-off state) and the DEM stage")
     p.add_argument("--output-dir", default="results/sci_crater")
     p.add_argument("--width", type=int, default=900, help="width of each picture panel in pixels")
     args = p.parse_args(argv)
@@ -199,9 +199,15 @@ def main(argv):
         f"{args.sph_target_radius:.3g} m, hand-off at {args.handoff_time:.3g} s, late-stage sound speed "
         f"{args.late_stage_sound_speed:.3g} m/s; bowl radius {bed_radius:.3g} m, DEM time {dem_time:.3g} s")
     start = time.time()
+    saved_handoff = os.path.join(args.output_dir, "sph_handoff.vtp")
+    if args.resume and not args.sph_state and os.path.isfile(saved_handoff):
+        args.sph_state = saved_handoff  # this run's SPH stage is done
     if args.sph_state:
         sph, sph_data, args.handoff_time = saved_sph_state(simple, args)
     else:
+        # The SPH stage checkpoints every 200 steps; --resume goes on from there.
+        sph_checkpoint = os.path.join(args.output_dir, "sph.cksph")
+        sph_resume = args.resume and os.path.isfile(sph_checkpoint)
         sph = simple.SPHImpact(ImpactorMaterial=args.impactor_material, ImpactorMass=args.impactor_mass,
                                ImpactSpeed=args.impact_speed, TargetMaterial=args.target_material,
                                TargetPorosity=args.porosity, FrictionAngle=args.friction_angle, Cohesion=0.0,
@@ -209,13 +215,15 @@ def main(argv):
                                TargetRadius=args.sph_target_radius, TargetContainer=1,
                                LateStageTime=args.late_stage_time, LateStageSoundSpeed=args.late_stage_sound_speed,
                                DomainRadius=args.sph_domain_radius,
-                               EndTime=args.handoff_time, OutputInterval=args.handoff_time)
-        say(f"[1/5] SPH impact to {args.handoff_time:.2e} s")
+                               EndTime=args.handoff_time, OutputInterval=args.handoff_time,
+                               CheckpointFile=sph_checkpoint, CheckpointInterval=200,
+                               ResumeFromCheckpoint=1 if sph_resume else 0)
+        say(f"[1/5] SPH impact to {args.handoff_time:.2e} s" + (f" (resumed from {sph_checkpoint})" if sph_resume else ""))
+        print_progress(sph, "SPH stage")
         sph_data = fetch_stage(sph, "SPH stage", args.handoff_time)
         # Saved so that other beds can be tried on the same SPH stage (--sph-state).
         state = simple.ForceTime(Input=sph, ForcedTime=args.handoff_time, IgnorePipelineTime=1)
-        simple.XMLPolyDataWriter(Input=state, FileName=os.path.join(args.output_dir, "sph_handoff.vtp")) \
-            .UpdatePipeline(args.handoff_time)
+        simple.XMLPolyDataWriter(Input=state, FileName=saved_handoff).UpdatePipeline(args.handoff_time)
     seconds["sph"] = round(time.time() - start, 1)
     phi = PACKING_FRACTION[args.packing]
     grain_radius = bed_radius * (phi / (2.0 * args.particles)) ** (1.0 / 3.0)
@@ -232,6 +240,7 @@ def main(argv):
     bed = simple.GranularBed(Packing=args.packing, Container="Bowl", ContainerRadius=bed_radius,
                              ParticleRadius=grain_radius, SurfaceHeight=0.0, ParticleDensity=rho_bulk / phi,
                              SettlingGravity=args.gravity, MaxParticles=max(10 * args.particles, 100000))
+    print_progress(bed, "bed")
     bed_data = fetch_stage(bed, "bed")
     seconds["bed"] = round(time.time() - start, 1)
     bed_phi = field_value(bed_data, "BulkPackingFraction")
@@ -256,8 +265,12 @@ def main(argv):
     vec = lambda name: [float(x) for x in fd.GetArray(name).GetTuple3(0)]  # noqa: E731
     dem0_tot = totals(dem0, grain_radius)
     vmax_dem = float(speeds(dem0).max())
+    # The bed takes over the compact material below the original surface; what lies above it
+    # (the curtain) comes in as particles of its own.
+    below_z = vec("SPHCompactMomentum")[2] - vec("SPHCurtainMomentum")[2]
     say(f"      {dem0.GetNumberOfPoints()} DEM particles, {int(field_value(dem0, 'BedRemoved'))} carved; "
-        f"compact momentum SPH {vec('SPHCompactMomentum')[2]:.4g}, DEM {vec('DEMMappedMomentum')[2]:.4g} kg m/s (z); "
+        f"momentum of the compact SPH material below the surface {below_z:.4g}, mapped onto the bed {vec('DEMMappedMomentum')[2]:.4g} "
+        f"kg m/s (z); "
         f"{int(field_value(dem0, 'CurtainCount'))} SPH particles above the surface, of which "
         f"{int(field_value(dem0, 'EscapedCount'))} ({field_value(dem0, 'SPHEscapedMass'):.3g} kg) land outside the bowl; "
         f"fastest DEM particle {vmax_dem:.3g} m/s")

@@ -10,7 +10,7 @@ Run scripts through scripts/pvbatch, which finds the plugin and sets up headless
 import glob
 import os
 
-__all__ = ["load_plugin", "plugin_path", "fetch", "fetch_stage", "field_value"]
+__all__ = ["load_plugin", "plugin_path", "fetch", "fetch_stage", "field_value", "print_progress"]
 
 
 def plugin_path():
@@ -42,6 +42,32 @@ def fetch(proxy, port=0):
     from paraview import servermanager
     proxy.UpdatePipeline()
     return servermanager.Fetch(proxy, idx=port)
+
+
+def print_progress(proxy, label, every=0.1, out=None):
+    """Prints `label: 40 % (85 s)` each time the progress a proxy's algorithm reports (what
+    ParaView's progress bar shows) passes another `every`; returns the observer's tag. For
+    long stages of a pvbatch script (an SPH stage or a bed settling for many minutes)."""
+    import sys
+    import time
+    algorithm = proxy.GetClientSideObject()
+    state = {"next": every, "start": None, "last": 0.0}
+    stream = out or sys.stdout
+
+    def observe(obj, _event):
+        fraction = obj.GetProgress()
+        if state["start"] is None or fraction < state["last"] - 0.25:  # a new update began
+            state["start"], state["next"], state["printed"] = time.time(), every, None
+        state["last"] = fraction
+        if fraction >= state["next"] and fraction < 1.0:
+            percent = f"{100.0 * fraction:.0f}"
+            if percent != state.get("printed"):
+                print(f"      {label}: {percent} % ({time.time() - state['start']:.0f} s)", file=stream, flush=True)
+                state["printed"] = percent
+            while state["next"] <= fraction:
+                state["next"] += every
+
+    return algorithm.AddObserver("ProgressEvent", observe)
 
 
 def fetch_stage(proxy, stage, time=None):

@@ -2,14 +2,16 @@
 time protocol (forward, backward from a kept snapshot gives the same state), conservation
 read from field data, checkpoint and resume, and clear errors for bad input."""
 
+import io
 import os
+import re
 import sys
 import tempfile
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-from craterkit import fetch, field_value, load_plugin
+from craterkit import fetch, field_value, load_plugin, print_progress
 from craterkit.testing import Checker, captured_vtk_messages
 
 simple = load_plugin()
@@ -80,6 +82,15 @@ t.check(all(ck.GetPointData().GetArray(a) is not None for a in ("Velocity", "Mas
 resumed = simple.SPHImpact(CheckpointFile=path, ResumeFromCheckpoint=1, **small)
 _, xr = state(resumed, 4e-5)
 t.check(np.abs(xr - x2).max() < 1e-9, f"the resumed run differs by {np.abs(xr - x2).max():.3g} m")
+
+# Progress as a script sees it: rising percentages, one line per tenth, while the run goes.
+printed = io.StringIO()
+watched = simple.SPHImpact(**small)
+print_progress(watched, "SPH", out=printed)
+watched.UpdatePipeline(4e-5)
+percents = [int(m) for m in re.findall(r"SPH: (\d+) %", printed.getvalue())]
+t.check(len(percents) >= 5 and percents == sorted(set(percents)) and 0 < percents[0] and percents[-1] < 100,
+        f"progress lines not rising tenths: {printed.getvalue()!r}")
 
 with captured_vtk_messages() as log:
     out = fetch(simple.SPHImpact(ImpactorMaterial="unobtainium", **small))
