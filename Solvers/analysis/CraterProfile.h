@@ -7,8 +7,9 @@
 // against the original surface z0:
 //   - depth: z0 minus the lowest point of the profile;
 //   - diameter: twice the radius where the profile first rises back to z0 from the centre;
-//   - rim: the highest point of the profile beyond that radius (rim-to-rim diameter, height),
-//     its radius the middle of the bins within a quarter particle diameter of the highest;
+//   - rim: the highest point of the profile between that radius and twice it (rim-to-rim
+//     diameter, height), its radius the middle of the bins within a quarter particle diameter
+//     of the highest; a rim height below that tolerance means no raised rim;
 //   - excavated volume: ∫ 2π r max(0, z0 − h(r)) dr inside the diameter.
 // The same measures are made for each side of the section through the axis (the azimuthal
 // bins within 60° of −x and of +x), for the asymmetry.
@@ -50,7 +51,7 @@ CraterProfileResult craterProfile(const std::vector<double>& positions, const st
                                   const CraterProfileParams& params);
 
 // The measures of one profile h(r) against z0 (exposed for tests); the rim is the middle of
-// the bins within `tolerance` of the highest beyond the crater's edge.
+// the bins within `tolerance` of the highest between the crater's edge and twice its radius.
 CraterMeasures measureProfile(const std::vector<double>& radius, const std::vector<double>& height, double z0,
                               double tolerance = 0.0);
 

@@ -99,3 +99,28 @@ TEST(CraterProfile, FlatBedHasNoCraterAndBadInputIsNamed) {
   rad[3] = 0.05;
   EXPECT_THROW(craterProfile(x, rad, par), InputError);
 }
+
+// The rim is the crest next to the crater, not the highest ground of the whole profile: a
+// bowl of radius 2 with a rim 0.1 high at r = 2.4, and a hill 0.5 high at r = 4.5 (terrain,
+// or a container's edge); and a cone without a raised rim in bumpy ground, whose rim height
+// stays within the bumps.
+TEST(CraterProfile, RimIsTheCrestNextToTheCraterNotTheHighestGround) {
+  std::vector<double> r, h, cone;
+  for (double x = 0.005; x < 6.0; x += 0.01) {
+    double z = 0.1 * std::exp(-(x - 2.4) * (x - 2.4) / 0.04) + 0.5 * std::exp(-(x - 4.5) * (x - 4.5) / 0.09);
+    if (x < 2.0)
+      z -= 0.6 * (1.0 - x * x / 4.0);
+    r.push_back(x), h.push_back(z);
+    cone.push_back(x < 2.0 ? -0.577 * (2.0 - x) : 0.01 * std::sin(17.0 * x) + (x > 5.0 ? 0.3 : 0.0));
+  }
+  const CraterMeasures m = measureProfile(r, h, 0.0, 0.005);
+  std::printf("rim at diameter %.3f (crest at 4.8), height %.3f (0.1)\n", m.rimDiameter, m.rimHeight);
+  ASSERT_TRUE(m.found);
+  EXPECT_NEAR(m.rimDiameter, 4.8, 0.05);
+  EXPECT_NEAR(m.rimHeight, 0.1, 0.005);
+  const CraterMeasures c = measureProfile(r, cone, 0.0, 0.005);
+  ASSERT_TRUE(c.found);
+  EXPECT_NEAR(c.diameter, 4.0, 0.02);
+  EXPECT_LE(c.rimDiameter, 8.0);
+  EXPECT_LT(c.rimHeight, 0.011); // the bumps', not the step at r = 5
+}
