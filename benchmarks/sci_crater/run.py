@@ -4,7 +4,7 @@ runs examples/sci_crater.py for RCP and HCP beds at two bed sizes on one SPH sta
 run's, handed to the others with --sph-state), and prints a table of crater diameter, rim
 diameter and depth against the pi-scaling prediction for the run and against the SCI crater,
 with the run read at Ryugu's gravity by pi-scaling (D x D_pi(Ryugu) / D_pi(run); in the gravity
-regime the crater's shape and D / D_pi do not depend on g). Checks, printed as PASS/FAIL: at
+regime the crater's shape and D / D_pi would not depend on g, but these runs do: --gravity). Checks, printed as PASS/FAIL: at
 the largest RCP bed, the scaled diameter within 15 % of 14.5 m and the depth within 25 % of
 2.3 m; HCP smaller and shallower than RCP; the change between the two bed sizes.
 
