@@ -96,8 +96,12 @@ int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, const Container& c
   double scale = inflate ? std::min(1.0, std::cbrt(kStartFraction / p.packingFraction)) : 1.0;
   const double growth = std::max(1e-4, -std::log(scale) / kGrowthSweeps);
   for (int sweep = 0; sweep < p.maxRelaxationIterations; ++sweep) {
-    if (sweep % 16 == 0)
-      reportProgress(progress, std::min(1.0, sweep / (2.0 * kGrowthSweeps)));
+    if (sweep % 16 == 0) {
+      // 0.8 over the growth's sweeps, then on towards 1 while the last overlaps go (that can
+      // take as long again: the bar must keep moving, not sit at its end).
+      const double g2 = 2.0 * kGrowthSweeps;
+      reportProgress(progress, sweep < g2 ? 0.8 * sweep / g2 : 0.8 + 0.2 * (1.0 - g2 / sweep));
+    }
     double* x = s.position.data();
     cells.build(x, n, 2.0 * rmax);
     double worst = 0.0;

@@ -141,7 +141,8 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
                             ? par_.maxSmoothingGrowth * par_.kappa * std::cbrt(mat.distention / rho0)
                             : 0.0);
     const double g = par_.maxSmoothingGrowth;
-    const double fraction = par_.densityFloor >= 0.0 ? par_.densityFloor : g > 0.0 ? 1.0 / (g * g * g) : 0.0;
+    const double fraction =
+      par_.densityFloor >= 0.0 ? par_.densityFloor : g > 0.0 ? std::min(0.5, 1.0 / (g * g * g)) : 0.0;
     rhoFloor_.push_back(rho0 > 0.0 ? fraction * rho0 / mat.distention : 0.0);
   }
   const std::size_t n = s_.size();
@@ -1037,13 +1038,19 @@ double SphSolver::step(double dt) {
       }
       const double c = c_[i];
       const double ev = 0.5 * dt * std::sqrt(dv2) / std::max({c, std::sqrt(v2), 1e-30});
-      // Density: Heun's against Euler's, both held at the floor (material dilating below it
-      // sets no step).
-      const double fl = floorOf(s_, i);
-      const double er = par_.summationDensity
-                          ? 0.0
-                          : std::abs(std::max(fl, s_.rho[i] + 0.5 * dt * (k1_.drho[i] + k2.drho[i])) -
-                                     std::max(fl, s_.rho[i] + dt * k1_.drho[i])) / s_.rho[i];
+      // Density: Heun's against Euler's, unless both come out below the floor and are held
+      // there (material dilating past it sets no step); a step that would leave a density
+      // without a floor at or below zero is taken again, shorter.
+      double er = 0.0;
+      if (!par_.summationDensity) {
+        const double fl = floorOf(s_, i);
+        const double heun = s_.rho[i] + 0.5 * dt * (k1_.drho[i] + k2.drho[i]);
+        const double euler = s_.rho[i] + dt * k1_.drho[i];
+        if (fl <= 0.0 && !(heun > 0.0))
+          er = INFINITY;
+        else if (!(fl > 0.0 && heun <= fl && euler <= fl))
+          er = 0.5 * dt * std::abs(k2.drho[i] - k1_.drho[i]) / s_.rho[i];
+      }
       const double eu = 0.5 * dt * std::abs(k2.du[i] - k1_.du[i]) / (s_.u[i] + c * c + 1e-30);
       const double e = std::max({ev, er, eu});
       if (e > err)

@@ -48,9 +48,11 @@ struct SphParams {
   // (ρ0/α0; solids only, 0: no cap). Without it a spray of expanding ejecta gets ever larger
   // h, which sizes the neighbour cells for everyone and forces a new list every step.
   double maxSmoothingGrowth = 2.0;
-  // The integrated density of a solid is held at or above this fraction of its material's
-  // reference bulk density ρ0/α0 (negative: 1/maxSmoothingGrowth³, where h stops growing;
-  // 0: no floor). Dilated material (a cohesionless bed torn apart, p = 0) otherwise keeps
+  // The integrated density of a particle whose material has a reference density (Tillotson,
+  // Murnaghan, stiffened gas; not the ideal gas) is held at or above this fraction of the
+  // material's reference bulk density ρ0/α0 (negative: 1/maxSmoothingGrowth³, where h stops
+  // growing, at most 1/2; 0: no floor). A state that starts below it is raised to it at the
+  // first step. Dilated material (a cohesionless bed torn apart, p = 0) otherwise keeps
   // losing density while it moves against its neighbours, without bound: its volume m/ρ then
   // dominates the neighbours' velocity gradients, and at last its density goes negative.
   double densityFloor = -1.0;

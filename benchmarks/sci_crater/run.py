@@ -10,7 +10,7 @@ the largest RCP bed, the scaled diameter within 15 % of 14.5 m and the depth wit
 
     benchmarks/sci_crater/run.py                         # g = 1000, RCP and HCP, 3e4 and 1e5 grains
     benchmarks/sci_crater/run.py --particles 6000 --packings RCP
-    benchmarks/sci_crater/run.py --resume ...            # continue the DEM stages from checkpoints
+    benchmarks/sci_crater/run.py --resume ...            # continue the SPH and DEM stages from checkpoints
 
 Anything after -- goes to the example (e.g. -- --sph-resolution 3). Results, reports and a
 summary.json go under build/benchmarks/sci_crater/<packing>_<particles>/.

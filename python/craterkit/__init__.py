@@ -50,6 +50,8 @@ def print_progress(proxy, label, every=0.1, out=None):
     long stages of a pvbatch script (an SPH stage or a bed settling for many minutes)."""
     import sys
     import time
+    if not every > 0.0:
+        raise ValueError(f"print_progress: every must be positive, not {every}")
     algorithm = proxy.GetClientSideObject()
     state = {"next": every, "start": None, "last": 0.0}
     stream = out or sys.stdout

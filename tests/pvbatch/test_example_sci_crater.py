@@ -60,7 +60,7 @@ print(f"crater diameter {r['crater_diameter_m']} m vs pi-scaling {r['pi_scaling_
 
 # Resuming: a run stopped after its first frame goes on from the checkpoint, which holds the
 # last requested state, and does not recompute it (the checkpoint stays as it was) or overwrite
-# it; the crater is the same to the last bit. The SPH stage is the one saved by the first run.
+# it; the crater is the same to the last bit. --resume takes the SPH stage the first run saved.
 import hashlib  # noqa: E402
 checkpoint = os.path.join(out, "dem.ckdem")
 growth_file = os.path.join(out, "dem_growth.json")
@@ -71,10 +71,12 @@ if os.path.isfile(growth_file):
     json.dump(growth[:1], open(growth_file, "w"))
     before = hashlib.sha256(open(checkpoint, "rb").read()).hexdigest()
     code = run_example(source_dir, "sci_crater", ["--particles", "1500", "--frames", "2", "--width", "500",
-                                                  "--output-dir", out, "--resume",
-                                                  "--sph-state", os.path.join(out, "sph_handoff.vtp")])
+                                                  "--output-dir", out, "--resume"])
     t.check(code == 0, f"resumed example exited with {code}")
     again = json.load(open(os.path.join(out, "report.json")))
+    t.check(again["seconds"]["sph"] < 0.2 * r["seconds"]["sph"],
+            f"the resumed run's SPH stage took {again['seconds']['sph']} s of the first's {r['seconds']['sph']} s: "
+            "it ran again instead of taking the saved one")
     t.check(hashlib.sha256(open(checkpoint, "rb").read()).hexdigest() == before,
             "the resumed run rewrote the checkpoint (it recomputed the DEM stage)")
     t.check(again["crater_diameter_m"] == r["crater_diameter_m"] and again["crater_depth_m"] == r["crater_depth_m"],

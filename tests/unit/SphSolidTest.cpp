@@ -321,7 +321,7 @@ TEST(SphSolid, LateStageSchemeKeepsTheGranularFlowWithLongSteps) {
 // tension, no cohesion: no force acts) in homologous expansion v = A x to three times its
 // size. Continuity gives rho = rho_b / (1 + A t)^3 while that is above the floor rho_b / 8
 // (rho_b = rho0 / alpha0, where h stops growing); below it the density is held there (without
-// the floor it falls towards rho_b / 27). The particles fly on unchanged.
+// the floor it falls to 0.055 rho_b here). The particles fly on unchanged.
 TEST(SphSolid, DilatedRegolithIsHeldAtTheDensityFloor) {
   const Material reg = libraryMaterial("regolith");
   const double rhoB = reg.eos.tillotson.rho0 / reg.distention, dx = 0.01, A = 1000.0, m = rhoB * dx * dx * dx;
@@ -335,6 +335,7 @@ TEST(SphSolid, DilatedRegolithIsHeldAtTheDensityFloor) {
         const double x[3] = {(i - 0.5 * (n - 1)) * dx, (j - 0.5 * (n - 1)) * dx, (k - 0.5 * (n - 1)) * dx};
         const double v[3] = {A * x[0], A * x[1], A * x[2]};
         s.add(x, v, m, rhoB, 0.0, 0);
+        s.alpha.back() = reg.distention; // porous, at its initial distention
       }
   const SphState start = s;
   SphSolver solver(s, par);
