@@ -46,8 +46,9 @@ CraterMeasures measureProfile(const std::vector<double>& radius, const std::vect
   // The rim: the highest point within one crater radius beyond the edge (a rim crest lies at
   // 1.1-1.3 crater radii; a high point farther out is the surrounding terrain, or the
   // container's edge, and a crater without a raised rim would otherwise report one there).
+  const double reach = 2.0 * edge;
   std::size_t rim = k + 1;
-  for (std::size_t j = k + 1; j < h.size() && r[j] <= 2.0 * edge; ++j)
+  for (std::size_t j = k + 1; j < h.size() && r[j] <= reach; ++j)
     if (h[j] > h[rim])
       rim = j;
   // The rim's radius: the middle of the run of bins around the highest that are within
@@ -55,7 +56,7 @@ CraterMeasures measureProfile(const std::vector<double>& radius, const std::vect
   std::size_t first = rim, last = rim;
   while (first > k + 1 && h[first - 1] >= h[rim] - tolerance)
     --first;
-  while (last + 1 < h.size() && r[last + 1] <= 2.0 * edge && h[last + 1] >= h[rim] - tolerance)
+  while (last + 1 < h.size() && r[last + 1] <= reach && h[last + 1] >= h[rim] - tolerance)
     ++last;
   m.rimDiameter = r[first] + r[last];
   m.rimHeight = h[rim] - z0;

@@ -53,7 +53,7 @@ def print_progress(proxy, label, every=0.1, out=None):
     if not every > 0.0:
         raise ValueError(f"print_progress: every must be positive, not {every}")
     algorithm = proxy.GetClientSideObject()
-    state = {"next": every, "start": None, "last": 0.0}
+    state = {"next": every, "start": None, "last": 0.0, "printed": None}
     stream = out or sys.stdout
 
     def observe(obj, _event):
@@ -63,7 +63,7 @@ def print_progress(proxy, label, every=0.1, out=None):
         state["last"] = fraction
         if fraction >= state["next"] and fraction < 1.0:
             percent = f"{100.0 * fraction:.0f}"
-            if percent != state.get("printed"):
+            if percent != state["printed"]:
                 print(f"      {label}: {percent} % ({time.time() - state['start']:.0f} s)", file=stream, flush=True)
                 state["printed"] = percent
             while state["next"] <= fraction:
