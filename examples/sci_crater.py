@@ -18,7 +18,11 @@ ballistic flight comes down outside the bowl leaves the domain at the hand-off, 
 stiffness is set by the grains that stay. Gravity decides what a run costs: the SPH target
 holds (0.8 D / impactor radius)^3 particles, and D grows as g^-0.17. The default fires the SCI
 impactor at g = 1000 m/s^2 (D = 1.0 m: 20,000 SPH particles, about 4 minutes on two cores with
-6,000 grains); at Ryugu's 1.5e-4 m/s^2 (D = 14.5 m) the SPH target would need 6e7 particles.
+6,000 grains); at Ryugu's 1.5e-4 m/s^2 (D = 14.5 m) a uniform SPH target would need 6e7
+particles, a graded one (--sph-coarsening 10: the impactor's spacing near the impact point,
+ten times coarser beyond 40 impactor radii) 67,762, whose late stage runs at steps of about
+9 ms from 10 s on to the hand-off at 196 s (about 2.2e4 steps; benchmarks/README.md, "At
+Ryugu's gravity", gives the command and the measured pace).
 In the gravity regime crater shape and D / D_pi would be the same at any gravity, and the
 validation (benchmarks/sci_crater/run.py) reads the SCI crater off the scaled result; these runs
 do depend on g (D / D_pi 0.78 at g = 1000, 0.95 at g = 100: README, "The SCI example").
@@ -71,6 +75,9 @@ def parse_args(argv):
     g.add_argument("--sph-resolution", type=int, default=2, help="SPH particles across the impactor")
     g.add_argument("--sph-target-radius", type=float, default=0.0,
                    help="SPH target hemisphere, m; 0: 0.8 x the predicted crater diameter D")
+    g.add_argument("--sph-coarsening", type=float, default=1.0,
+                   help="graded SPH target (SPHImpact's TargetCoarsening, experimental): the impactor's spacing "
+                        "within four impactor radii, coarsening outwards up to this multiple of it; 1: uniform")
     g.add_argument("--handoff-time", type=float, default=0.0,
                    help="s after contact; 0: 0.63 sqrt(D/g) for the predicted D, when the crater has "
                         "mostly opened (20 ms at the default gravity)")
@@ -112,6 +119,8 @@ def parse_args(argv):
         value = getattr(args, name)
         if not (value >= 0.0 and math.isfinite(value)):
             p.error(f"--{name.replace('_', '-')} must not be negative (got {value})")
+    if not (1.0 <= args.sph_coarsening <= 100.0):
+        p.error(f"--sph-coarsening must be in [1, 100] (got {args.sph_coarsening})")
     if args.particles < 200:
         p.error(f"--particles must be at least 200 (got {args.particles})")
     if args.frames < 1:
@@ -147,7 +156,8 @@ def saved_sph_state(simple, args):
     if target is not None and target != args.target_material:
         sys.exit(f"--sph-state {args.sph_state}: its target is {target}, this run's {args.target_material}")
     for name, ours, what in (("FrictionAngle", args.friction_angle, "friction angle"),
-                             ("TargetRadius", args.sph_target_radius, "SPH target radius")):
+                             ("TargetRadius", args.sph_target_radius, "SPH target radius"),
+                             ("TargetCoarsening", args.sph_coarsening, "SPH target coarsening")):
         theirs = field_value(data, name)
         if theirs is not None and abs(theirs - ours) > 1e-6 * max(abs(ours), 1e-12):
             sys.exit(f"--sph-state {args.sph_state}: its {what} is {theirs:g}, this run's {ours:g}")
@@ -178,6 +188,21 @@ def totals(data, grain_radius=None):
         out["bed_kinetic_energy_J"] = float(ke[~flying].sum())
         out["ejecta_in_flight"] = int(flying.sum())
     return out
+
+
+def impactor_depth(data):
+    """How deep below the SPH target's surface the impactor's material (Material 0) is: the
+    depth of its centre of mass and of its deepest particle. The crater forms around the
+    impactor's track: at g = 1000 and 100 the track is 0.4 of the pi-scaling diameter and the
+    crater's floor lies at 0.6-0.9 of its depth (benchmarks/README.md, "What sets the depth")."""
+    pd = data.GetPointData()
+    z = vtk_to_numpy(data.GetPoints().GetData())[:, 2] - field_value(data, "SurfaceHeight", 0.0)
+    mine = vtk_to_numpy(pd.GetArray("Material")) == 0
+    if not mine.any():
+        return {"centre_of_mass_m": None, "deepest_m": None}
+    m = vtk_to_numpy(pd.GetArray("Mass"))[mine]
+    return {"centre_of_mass_m": round(-float(np.average(z[mine], weights=m)), 4),
+            "deepest_m": round(-float(z[mine].min()), 4)}
 
 
 def main(argv):
@@ -227,7 +252,8 @@ def main(argv):
                                ImpactSpeed=args.impact_speed, TargetMaterial=args.target_material,
                                TargetPorosity=args.porosity, FrictionAngle=args.friction_angle, Cohesion=0.0,
                                SurfaceGravity=args.gravity, ParticlesAcrossImpactor=args.sph_resolution,
-                               TargetRadius=args.sph_target_radius, TargetContainer=1,
+                               TargetRadius=args.sph_target_radius, TargetCoarsening=args.sph_coarsening,
+                               TargetContainer=1,
                                LateStageTime=args.late_stage_time, LateStageSoundSpeed=args.late_stage_sound_speed,
                                DomainRadius=args.sph_domain_radius,
                                EndTime=args.handoff_time, OutputInterval=args.handoff_time,
@@ -244,10 +270,12 @@ def main(argv):
     grain_radius = bed_radius * (phi / (2.0 * args.particles)) ** (1.0 / 3.0)
     sph_tot = totals(sph_data)
     s = speeds(sph_data)
+    penetration = impactor_depth(sph_data)
     say(f"      {sph_data.GetNumberOfPoints()} SPH particles, {int(field_value(sph_data, 'Step'))} steps, "
         f"{seconds['sph']} s; kinetic energy {sph_tot['kinetic_energy_J']:.3g} J "
         f"({sph_tot['kinetic_energy_J'] / (0.5 * args.impactor_mass * args.impact_speed ** 2):.2%} of the impact's); "
-        f"{int((s > v_lim).sum())} particles faster than the ejecta limit {v_lim:.3g} m/s")
+        f"{int((s > v_lim).sum())} particles faster than the ejecta limit {v_lim:.3g} m/s; the impactor's "
+        f"centre of mass {penetration['centre_of_mass_m']} m below the surface")
 
     say(f"[2/5] {args.packing} bed of about {args.particles} grains of radius {grain_radius:.3g} m settled at "
         f"g = {args.gravity:g} m/s^2")
@@ -386,7 +414,9 @@ def main(argv):
         "sci_crater_m": SCI_CRATER,
         "sph_particles": sph_data.GetNumberOfPoints(),
         "sph_resolution": args.sph_resolution,
+        "sph_target_coarsening": args.sph_coarsening,
         "handoff_time_s": args.handoff_time,
+        "impactor_depth_at_handoff_m": penetration,
         "ejecta_speed_limit_m_s": round(v_lim, 4),
         "sph_totals_at_handoff": sph_tot,
         "sph_ejecta_dropped": {"mass_kg": field_value(dem0, "SPHEjectaMass"), "momentum_kg_m_s": vec("SPHEjectaMomentum")},

@@ -61,14 +61,15 @@ def main(argv):
 
     fmt = lambda v, d=3: "none" if v is None else f"{v:.{d}g}"  # noqa: E731
     print("\n| packing | grains | r (m) | D (m) | rim D (m) | depth (m) | D / D_pi | depth / D | "
-          "at Ryugu: D / rim D / depth (m) | DEM steps | wall (s) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+          "at Ryugu: D / rim D / depth (m) | impactor's depth at the hand-off (m) | DEM steps | wall (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for packing, n, r in rows:
         s = r.get("scaled_to_ryugu_m")
         D, depth = r["crater_diameter_m"], r["crater_depth_m"]
         ryugu = f"{s['diameter']:.3g} / {s['rim_diameter']:.3g} / {s['depth']:.3g}" if s else "none"
+        impactor = r.get("impactor_depth_at_handoff_m", {}).get("centre_of_mass_m")  # older reports lack it
         print(f"| {packing} | {r['bed_particles']} | {r['grain_radius_m']:.3g} | {fmt(D)} | {fmt(r['rim_diameter_m'])} | "
-              f"{fmt(depth)} | {fmt(r['diameter_over_pi_scaling'])} | {fmt(depth / D if D else None, 2)} | {ryugu} | "
+              f"{fmt(depth)} | {fmt(r['diameter_over_pi_scaling'])} | {fmt(depth / D if D else None, 2)} | {ryugu} | {fmt(impactor)} | "
               f"{r['dem_steps']} | {r['wall_s']} |")
     r0 = rows[0][2]
     print(f"\npi-scaling for these parameters: D = {r0['pi_scaling_diameter_m']} m; at Ryugu "

@@ -2,7 +2,8 @@
 LateStageSoundSpeed) and a DomainRadius for the fast ejecta, measured by CraterProfile at every
 output and compared with the Housen & Holsapple (2011) pi-scaling diameter for the same
 impactor, target and gravity. Prints one line per output (crater diameter at the pre-impact
-level, depth, rim diameter, kinetic energy of the slow material, seconds) and a summary.
+level, depth, the depth of the impactor's centre of mass, rim diameter, kinetic energy of the
+slow material, seconds) and a summary.
 
     scripts/pvbatch benchmarks/sci_crater/sph_late_stage.py            # 2 kg at 2 km/s, g = 9.81, ~8 min
     scripts/pvbatch benchmarks/sci_crater/sph_late_stage.py --help
@@ -80,17 +81,22 @@ def main():
         speed = np.sqrt((v * v).sum(1))
         slow = speed < args.slow
         ke_slow = 0.5 * float((m[slow] * speed[slow] ** 2).sum())
+        # How deep the impactor's material is (Material 0): the crater forms around its track.
+        z = vtk_to_numpy(data.GetPoints().GetData())[:, 2]
+        impactor = vtk_to_numpy(data.GetPointData().GetArray("Material")) == 0
+        imp_depth = -float(np.average(z[impactor], weights=m[impactor])) if impactor.any() else float("nan")
         profile.UpdatePipeline(t)
         fd = fetch(profile).GetFieldData()
         value = lambda name: fd.GetArray(name).GetValue(0) if fd.GetArray(name) else float("nan")  # noqa: E731
         row = (t, int(field_value(data, "Step")), value("CraterDiameter"), value("CraterDepth"),
-               value("RimDiameter"), ke_slow, time.time() - start)
+               value("RimDiameter"), ke_slow, time.time() - start, imp_depth)
         rows.append(row)
         say(f"t = {row[0]:.3f} s  step {row[1]:6d}  D = {row[2]:.3f} m ({row[2] / d_pi:.2f} of pi-scaling)  "
-            f"depth {row[3]:.3f} m  rim diameter {row[4]:.3f} m  slow KE {row[5]:.3g} J  {row[6]:.0f} s")
+            f"depth {row[3]:.3f} m  impactor {row[7]:.3f} m deep  rim diameter {row[4]:.3f} m  slow KE {row[5]:.3g} J  {row[6]:.0f} s")
     last = rows[-1]
     say(f"\n{data.GetNumberOfPoints()} SPH particles; at {last[0]:.3f} s: D = {last[2]:.3f} m = "
-        f"{last[2] / d_pi:.2f} x pi-scaling ({d_pi:.3f} m), depth {last[3]:.3f} m, depth/D {last[3] / last[2] if last[2] > 0 else float('nan'):.2f}; "
+        f"{last[2] / d_pi:.2f} x pi-scaling ({d_pi:.3f} m), depth {last[3]:.3f} m, depth/D {last[3] / last[2] if last[2] > 0 else float('nan'):.2f}, "
+        f"impactor's centre of mass {last[7]:.3f} m deep; "
         f"{last[6]:.0f} s on {os.cpu_count()} cores")
 
 

@@ -3,8 +3,9 @@
 the crater's diameter is within 35 % of the pi-scaling prediction for the run's own parameters,
 the hand-off carried the compact SPH material's momentum over exactly and the dropped ejecta
 account for the rest, the DEM bed lost energy as it settled, the pi-scaling prediction agrees
-with the values computed by hand in PHYSICS.md section 4.2, and the pictures and report exist;
-then that a run resumed after its first frame continues from the checkpoint."""
+with the values computed by hand in PHYSICS.md section 4.2, the impactor's reported depth lies
+inside the SPH target, and the pictures and report exist; then that a run resumed after its
+first frame continues from the checkpoint, and that a bad --sph-coarsening is refused."""
 
 import json
 import os
@@ -51,6 +52,14 @@ t.check(ratio is not None and abs(ratio - 1.0) <= 0.35,
         f"crater diameter {r['crater_diameter_m']} m against pi-scaling {r['pi_scaling_diameter_m']} m")
 t.check(r["crater_depth_m"] is not None and 0.05 < r["crater_depth_m"] / r["pi_scaling_diameter_m"] < 0.5,
         f"crater depth {r['crater_depth_m']} m")
+# The impactor's track at the hand-off: the dense sphere ploughs into the porous target (at
+# 0.41 D_pi here) rather than rebounding (as it did when the regolith carried the basalt
+# matrix's shear waves), so it is well below the surface: deeper than 0.1 D_pi (about three
+# impactor radii), its deepest particle at least as deep as its centre of mass, and inside
+# the SPH target (0.8 D_pi).
+pen = r["impactor_depth_at_handoff_m"]
+t.check(pen["centre_of_mass_m"] is not None and 0.1 * r["pi_scaling_diameter_m"] < pen["centre_of_mass_m"] <=
+        pen["deepest_m"] < 0.8 * r["pi_scaling_diameter_m"], f"impactor's depth at the hand-off {pen}")
 for image in r["images"]:
     path = os.path.join(out, image)
     t.check(os.path.isfile(path) and os.path.getsize(path) > 10000, f"{image} missing or empty")
@@ -83,4 +92,7 @@ if os.path.isfile(growth_file):
             f"resumed crater {again['crater_diameter_m']} m, {again['crater_depth_m']} m against "
             f"{r['crater_diameter_m']} m, {r['crater_depth_m']} m")
     t.check(again["crater_growth"] == growth, "the resumed run's frame record differs")
+# Bad input: a graded target outside [1, 100] is refused before any work.
+code = run_example(source_dir, "sci_crater", ["--sph-coarsening", "0.5", "--output-dir", out + "_bad"])
+t.check(code == 2, f"--sph-coarsening 0.5: exit code {code}, expected the usage error 2")
 sys.exit(t.close())
