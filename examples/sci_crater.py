@@ -41,7 +41,7 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkObject
 
-from craterkit import fetch, fetch_stage, field_value, load_plugin, material_value, print_progress
+from craterkit import fetch, fetch_stage, field_value, impactor_depth, load_plugin, material_value, print_progress
 from craterkit.cross_section import crater_measures, render_cross_section
 from craterkit.figures import handoff_figure, profile_plot
 from craterkit.report import write_report
@@ -190,21 +190,6 @@ def totals(data, grain_radius=None):
     return out
 
 
-def impactor_depth(data):
-    """How deep below the SPH target's surface the impactor's material (Material 0) is: the
-    depth of its centre of mass and of its deepest particle. The crater forms around the
-    impactor's track: at g = 1000 and 100 the track is 0.4 of the pi-scaling diameter and the
-    crater's floor lies at 0.6-0.9 of its depth (benchmarks/README.md, "What sets the depth")."""
-    pd = data.GetPointData()
-    z = vtk_to_numpy(data.GetPoints().GetData())[:, 2] - field_value(data, "SurfaceHeight", 0.0)
-    mine = vtk_to_numpy(pd.GetArray("Material")) == 0
-    if not mine.any():
-        return {"centre_of_mass_m": None, "deepest_m": None}
-    m = vtk_to_numpy(pd.GetArray("Mass"))[mine]
-    return {"centre_of_mass_m": round(-float(np.average(z[mine], weights=m)), 4),
-            "deepest_m": round(-float(z[mine].min()), 4)}
-
-
 def main(argv):
     args = parse_args(argv)
     os.makedirs(args.output_dir, exist_ok=True)
@@ -270,7 +255,10 @@ def main(argv):
     grain_radius = bed_radius * (phi / (2.0 * args.particles)) ** (1.0 / 3.0)
     sph_tot = totals(sph_data)
     s = speeds(sph_data)
-    penetration = impactor_depth(sph_data)
+    # The impactor's track at the hand-off: at g = 1000 and 100 it is 0.4 of D_pi and the
+    # crater's floor lies at 0.6-0.9 of its depth (benchmarks/README.md, "What sets the depth").
+    track = impactor_depth(sph_data)
+    penetration = {k: None if track[k] is None else round(track[k], 4) for k in ("centre_of_mass_m", "deepest_m")}
     say(f"      {sph_data.GetNumberOfPoints()} SPH particles, {int(field_value(sph_data, 'Step'))} steps, "
         f"{seconds['sph']} s; kinetic energy {sph_tot['kinetic_energy_J']:.3g} J "
         f"({sph_tot['kinetic_energy_J'] / (0.5 * args.impactor_mass * args.impact_speed ** 2):.2%} of the impact's); "

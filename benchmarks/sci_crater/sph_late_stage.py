@@ -18,7 +18,7 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
-from craterkit import fetch, fetch_stage, field_value, load_plugin, material_value  # noqa: E402
+from craterkit import fetch, fetch_stage, field_value, impactor_depth, load_plugin, material_value  # noqa: E402
 from craterkit.scaling import crater_diameter  # noqa: E402
 
 
@@ -81,10 +81,8 @@ def main():
         speed = np.sqrt((v * v).sum(1))
         slow = speed < args.slow
         ke_slow = 0.5 * float((m[slow] * speed[slow] ** 2).sum())
-        # How deep the impactor's material is (Material 0): the crater forms around its track.
-        z = vtk_to_numpy(data.GetPoints().GetData())[:, 2]
-        impactor = vtk_to_numpy(data.GetPointData().GetArray("Material")) == 0
-        imp_depth = -float(np.average(z[impactor], weights=m[impactor])) if impactor.any() else float("nan")
+        imp_depth = impactor_depth(data)["centre_of_mass_m"]  # the crater forms around its track
+        imp_depth = float("nan") if imp_depth is None else imp_depth
         profile.UpdatePipeline(t)
         fd = fetch(profile).GetFieldData()
         value = lambda name: fd.GetArray(name).GetValue(0) if fd.GetArray(name) else float("nan")  # noqa: E731

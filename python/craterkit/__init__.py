@@ -10,7 +10,7 @@ Run scripts through scripts/pvbatch, which finds the plugin and sets up headless
 import glob
 import os
 
-__all__ = ["load_plugin", "plugin_path", "fetch", "fetch_stage", "field_value", "print_progress"]
+__all__ = ["load_plugin", "plugin_path", "fetch", "fetch_stage", "field_value", "impactor_depth", "print_progress"]
 
 
 def plugin_path():
@@ -96,6 +96,24 @@ def field_value(data, name, default=None):
     if array.GetNumberOfComponents() > 1:
         return [array.GetComponent(0, k) for k in range(array.GetNumberOfComponents())]
     return array.GetTuple1(0)
+
+
+def impactor_depth(data):
+    """How deep below the surface (the SurfaceHeight field; 0 without it) an SPH state's
+    impactor material (Material 0) is: {"centre_of_mass_m", "deepest_m", "speed_m_s" (its mean
+    speed)}, all None when the state has no impactor particles. The crater forms around the
+    impactor's track (benchmarks/README.md, "What sets the depth")."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    pd = data.GetPointData()
+    mine = vtk_to_numpy(pd.GetArray("Material")) == 0
+    if not mine.any():
+        return {"centre_of_mass_m": None, "deepest_m": None, "speed_m_s": None}
+    z = vtk_to_numpy(data.GetPoints().GetData())[mine, 2] - field_value(data, "SurfaceHeight", 0.0)
+    m = vtk_to_numpy(pd.GetArray("Mass"))[mine]
+    v = vtk_to_numpy(pd.GetArray("Velocity"))[mine]
+    return {"centre_of_mass_m": -float(np.average(z, weights=m)), "deepest_m": -float(z.min()),
+            "speed_m_s": float(np.linalg.norm(v, axis=1).mean())}
 
 
 def material_value(name, key, default=None):
