@@ -8,6 +8,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -69,6 +70,7 @@ void SphParams::validate() const {
 namespace {
 
 constexpr std::uint32_t kNoShift = 13; // image code (sx+1) + 3 (sy+1) + 9 (sz+1) of the particle itself
+constexpr int kMaxLevels = 16;         // levels of h in the neighbour grids (√2 apart)
 
 // Derived constants of a material's strength and porosity model.
 struct Rheology {
@@ -178,7 +180,7 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
   for (std::size_t i = 0; i < n; ++i)
     s_.h[i] = smoothingLength(s_, i);
   assignFlaws();
-  buildNeighbours(s_, 0.0);
+  buildNeighbours(s_, 0.0, false);
   settle(s_, p_, c_);
   const double signal = computeRates(s_, p_, c_, k1_);
   stableStep_ = limitStep(s_, k1_, signal);
@@ -243,11 +245,11 @@ bool SphSolver::neighboursValid(const SphState& s, double dt) const {
   // Valid while no pair can have come within its listing range without being listed. A pair
   // closes in by at most the sum of its two particles' displacements D (since the build, plus
   // 1.5 dt |v| for the motion still to come in this step). An unlisted pair had at least the
-  // margin to spare, so the two largest D bound every pair; but a particle with a clearance C
-  // (no unlisted particle within twice the margin at the build: ejecta in flight, alone or in
-  // small clumps) had C to spare against everybody and needs only D + D_max < C. Such particles
-  // are left out of the two largest, so that a few fast fragments do not force a new list for
-  // all. And no h has grown past the allowance.
+  // larger of its two margins to spare; but a particle with a clearance C (no unlisted
+  // particle within twice the margin at the build: ejecta in flight, alone or in small clumps)
+  // had C to spare against everybody and needs only D + D_max < C. Such particles are left out
+  // of the pairs' check, so that a few fast fragments do not force a new list for all. And no
+  // h has grown past the allowance.
   const std::size_t n = s.size();
   if (nb_.x.size() != s.x.size() || par_.rebuildEveryStep)
     return false;
@@ -282,32 +284,68 @@ bool SphSolver::neighboursValid(const SphState& s, double dt) const {
   }
   if (!hOk)
     return false;
-  double d1 = 0.0, d2 = 0.0;
+  // A pair (a, b) is safe while D_a + D_b stays below the larger of their margins: so if both
+  // have moved less than half their own. Those that have not are checked against every level
+  // of h (its two largest D and smallest margin): against the largest D but their own. With
+  // one margin for all this is "the two largest D below the margin".
+  const std::size_t L = nb_.levels;
+  std::array<double, kMaxLevels> d1{}, d2{}, muMin;
+  std::array<std::size_t, kMaxLevels> top;
+  muMin.fill(INFINITY);
+  top.fill(n);
+  auto excluded = [&](std::size_t i) { return nb_.out[i] || D[i] + dAll < nb_.clearance[i]; };
   for (std::size_t i = 0; i < n; ++i) {
-    if (nb_.out[i] || D[i] + dAll < nb_.clearance[i])
+    if (excluded(i))
       continue;
-    if (D[i] > d2) {
-      d2 = std::min(D[i], d1);
-      d1 = std::max(D[i], d1);
+    const std::size_t l = nb_.level[i];
+    if (D[i] > d1[l]) {
+      d2[l] = d1[l], d1[l] = D[i], top[l] = i;
+    } else if (D[i] > d2[l]) {
+      d2[l] = D[i];
     }
+    muMin[l] = std::min(muMin[l], nb_.margin[i]);
   }
-  return d1 + d2 < nb_.margin;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (excluded(i) || D[i] < 0.5 * nb_.margin[i])
+      continue;
+    for (std::size_t l = 0; l < L; ++l)
+      if (muMin[l] < INFINITY && D[i] + (top[l] == i ? d2[l] : d1[l]) >= std::max(nb_.margin[i], muMin[l]))
+        return false;
+  }
+  return true;
 }
 
-void SphSolver::buildNeighbours(const SphState& s, double margin) {
+void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
   const std::size_t n = s.size();
   nb_.out.assign(n, 0);
-  double hmax = 0.0;
+  nb_.margin.assign(n, 0.0);
+  double hmax = 0.0, hmin = INFINITY, muMax = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     nb_.out[i] = outside(s, i);
-    if (!nb_.out[i])
+    if (!nb_.out[i]) {
       hmax = std::max(hmax, s.h[i]);
+      hmin = std::min(hmin, s.h[i]);
+      // Each particle's own: skin h, or for a fast one 16 steps of its motion (at most h/2), so
+      // that its list lasts about 6 steps. In a graded target a coarse particle's list then
+      // lasts as long as a fine one's, and a few fast ones do not force new lists for all.
+      // (One margin for all, set by the finest h and the fastest particle, made every list of
+      // a late-stage graded run last a step.)
+      if (margins) {
+        double w2 = 0.0;
+        for (int k = 0; k < 3; ++k) {
+          const double w = s.v[3 * i + k] + (k1_.dx.size() == s.v.size() ? k1_.dx[3 * i + k] : 0.0);
+          w2 += w * w;
+        }
+        nb_.margin[i] = std::max(par_.skin * s.h[i], std::min(16.0 * dt * std::sqrt(w2), 0.5 * s.h[i]));
+      }
+      muMax = std::max(muMax, nb_.margin[i]);
+    }
   }
+  const std::vector<double>& mu = nb_.margin;
   const double grow = 1.05; // h may grow this much before the list misses a pair
-  const double reach = grow * hmax + margin;
+  const double reach = grow * hmax + muMax;
   nb_.x = s.x;
   nb_.h = s.h;
-  nb_.margin = margin;
   nb_.grow = grow;
   std::vector<double> pos;
   std::vector<std::uint32_t> id;
@@ -343,12 +381,43 @@ void SphSolver::buildNeighbours(const SphState& s, double margin) {
           id.push_back(static_cast<std::uint32_t>(i * 32 + code));
         }
       }
-  // A sparse grid: cells of half the reach, keyed (z, y, x) in 64 bits and sorted, so memory
-  // and cost do not depend on how far ejecta have flown (a dense grid over a spray kilometres
-  // wide would have to coarsen its cells for everyone). Candidate positions are copied in cell
-  // order, so the scan reads memory sequentially.
+  // Levels of smoothing length, a factor of √2 apart (level 0 holds the largest h). With one
+  // grid sized by the largest h, a graded target (h ten times larger at its edge than at the
+  // impact point) or a spray of expanded ejecta would make every fine particle scan a thousand
+  // times its own neighbourhood. Each level has its own grid; a particle scans its own level
+  // and the coarser ones (cells sized for them, so a few per axis), and the pairs with finer
+  // particles reach it from their side: the finer partner lists the pair and hands it over.
+  // The pairs are those of one grid: r below grow max(h_a, h_b) plus the larger margin.
+  int levels = 1;
+  if (hmax > std::sqrt(2.0) * hmin)
+    levels = std::min(kMaxLevels, 1 + static_cast<int>(std::floor(2.0 * std::log2(hmax / hmin))));
+  auto levelOf = [&](double h) {
+    return levels == 1 ? 0 : std::clamp(static_cast<int>(std::floor(2.0 * std::log2(hmax / h))), 0, levels - 1);
+  };
+  nb_.levels = static_cast<std::size_t>(levels);
+  nb_.level.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    nb_.level[i] = static_cast<std::uint8_t>(levelOf(s.h[i]));
   const std::size_t m = id.size();
-  const double cs = 0.5 * reach;
+  std::vector<std::uint8_t> level(m);
+  std::vector<double> levelH(static_cast<std::size_t>(levels), 0.0);  // largest h of each level
+  std::vector<double> levelMu(static_cast<std::size_t>(levels), 0.0); // and largest margin
+  std::vector<std::size_t> levelSize(static_cast<std::size_t>(levels) + 1, 0);
+  for (std::size_t q = 0; q < m; ++q) {
+    const double h = s.h[id[q] / 32];
+    const int l = levelOf(h);
+    level[q] = static_cast<std::uint8_t>(l);
+    levelH[static_cast<std::size_t>(l)] = std::max(levelH[static_cast<std::size_t>(l)], h);
+    levelMu[static_cast<std::size_t>(l)] = std::max(levelMu[static_cast<std::size_t>(l)], mu[id[q] / 32]);
+    ++levelSize[static_cast<std::size_t>(l) + 1];
+  }
+  // Sparse grids: cells of half the level's reach, keyed (z, y, x) in 64 bits and sorted, so
+  // memory and cost do not depend on how far ejecta have flown (a dense grid over a spray
+  // kilometres wide would have to coarsen its cells for everyone). Candidate positions are
+  // copied in (level, cell) order, so a scan reads memory sequentially.
+  std::vector<double> cellSize(static_cast<std::size_t>(levels));
+  for (int l = 0; l < levels; ++l)
+    cellSize[static_cast<std::size_t>(l)] = 0.5 * (grow * levelH[static_cast<std::size_t>(l)] + levelMu[static_cast<std::size_t>(l)]);
   double lo[3] = {INFINITY, INFINITY, INFINITY};
   for (std::size_t q = 0; q < m; ++q)
     for (int k = 0; k < 3; ++k) {
@@ -357,118 +426,170 @@ void SphSolver::buildNeighbours(const SphState& s, double margin) {
       lo[k] = std::min(lo[k], pos[3 * q + k]);
     }
   constexpr std::int64_t kAxis = (std::int64_t(1) << 21) - 1;
-  auto coord = [&](double v, int k) {
-    return static_cast<std::int64_t>(std::clamp(std::floor((v - lo[k]) / cs), 0.0, static_cast<double>(kAxis)));
+  auto coord = [&](double v, int k, int l) {
+    return static_cast<std::int64_t>(
+        std::clamp(std::floor((v - lo[k]) / cellSize[static_cast<std::size_t>(l)]), 0.0, static_cast<double>(kAxis)));
   };
   auto key = [](std::int64_t cx, std::int64_t cy, std::int64_t cz) { return (cz << 42) | (cy << 21) | cx; };
+  for (int l = 0; l < levels; ++l)
+    levelSize[static_cast<std::size_t>(l) + 1] += levelSize[static_cast<std::size_t>(l)];
   std::vector<std::pair<std::int64_t, std::uint32_t>> order(m);
-  for (std::size_t q = 0; q < m; ++q)
-    order[q] = {key(coord(pos[3 * q], 0), coord(pos[3 * q + 1], 1), coord(pos[3 * q + 2], 2)), static_cast<std::uint32_t>(q)};
-  std::sort(order.begin(), order.end());
-  std::vector<double> spos(3 * m), sh(m); // positions and h in cell order
-  std::vector<std::uint32_t> sid(m);
-  std::vector<std::int64_t> cellKey;      // distinct cells, ascending
-  std::vector<std::uint32_t> cellStart;   // their first entry in the sorted arrays, plus the end
-  for (std::size_t r = 0; r < m; ++r) {
-    const std::uint32_t q = order[r].second;
-    for (int k = 0; k < 3; ++k)
-      spos[3 * r + k] = pos[3 * q + k];
-    sid[r] = id[q];
-    sh[r] = s.h[id[q] / 32];
-    if (r == 0 || order[r].first != order[r - 1].first) {
-      cellKey.push_back(order[r].first);
-      cellStart.push_back(static_cast<std::uint32_t>(r));
+  {
+    std::vector<std::size_t> at(levelSize.begin(), levelSize.end() - 1);
+    for (std::size_t q = 0; q < m; ++q) {
+      const int l = level[q];
+      order[at[static_cast<std::size_t>(l)]++] = {
+          key(coord(pos[3 * q], 0, l), coord(pos[3 * q + 1], 1, l), coord(pos[3 * q + 2], 2, l)), static_cast<std::uint32_t>(q)};
     }
   }
+  for (int l = 0; l < levels; ++l)
+    std::sort(order.begin() + static_cast<std::ptrdiff_t>(levelSize[static_cast<std::size_t>(l)]),
+              order.begin() + static_cast<std::ptrdiff_t>(levelSize[static_cast<std::size_t>(l) + 1]));
+  std::vector<double> spos(3 * m), sh(m), smu(m); // positions, h and margins in (level, cell) order
+  std::vector<std::uint32_t> sid(m);
+  std::vector<std::int64_t> cellKey;                                        // distinct cells, ascending per level
+  std::vector<std::uint32_t> cellStart;                                     // their first entry in the sorted arrays, plus the end
+  std::vector<std::size_t> levelCells(static_cast<std::size_t>(levels) + 1, 0); // each level's range in cellKey
+  for (int l = 0; l < levels; ++l) {
+    for (std::size_t r = levelSize[static_cast<std::size_t>(l)]; r < levelSize[static_cast<std::size_t>(l) + 1]; ++r) {
+      const std::uint32_t q = order[r].second;
+      for (int k = 0; k < 3; ++k)
+        spos[3 * r + k] = pos[3 * q + k];
+      sid[r] = id[q];
+      sh[r] = s.h[id[q] / 32];
+      smu[r] = mu[id[q] / 32];
+      if (r == levelSize[static_cast<std::size_t>(l)] || order[r].first != order[r - 1].first) {
+        cellKey.push_back(order[r].first);
+        cellStart.push_back(static_cast<std::uint32_t>(r));
+      }
+    }
+    levelCells[static_cast<std::size_t>(l) + 1] = cellKey.size();
+  }
   cellStart.push_back(static_cast<std::uint32_t>(m));
-  // Lists a's neighbours; true if an unlisted particle came within twice the margin.
-  auto visit = [&](std::size_t a, std::vector<std::uint32_t>& out) {
-    bool nearMiss = false;
-    const double* xa = &s.x[3 * a];
-    const double ha = s.h[a];
+  // Calls f(begin, end) for the sorted entries of level l in the cells within R of x.
+  auto empty = [&](int l) { return levelSize[static_cast<std::size_t>(l)] == levelSize[static_cast<std::size_t>(l) + 1]; };
+  auto forCells = [&](const double* x, double R, int l, auto&& f) {
+    if (empty(l))
+      return;
     std::int64_t c0[3], c1[3];
     for (int k = 0; k < 3; ++k) {
-      c0[k] = coord(xa[k] - reach, k);
-      c1[k] = coord(xa[k] + reach, k);
+      c0[k] = coord(x[k] - R, k, l);
+      c1[k] = coord(x[k] + R, k, l);
     }
+    const auto first = cellKey.begin() + static_cast<std::ptrdiff_t>(levelCells[static_cast<std::size_t>(l)]);
+    const auto end = cellKey.begin() + static_cast<std::ptrdiff_t>(levelCells[static_cast<std::size_t>(l) + 1]);
     for (std::int64_t cz = c0[2]; cz <= c1[2]; ++cz)
       for (std::int64_t cy = c0[1]; cy <= c1[1]; ++cy) {
         // The row's cells are contiguous in key order: one search for its first.
-        auto it = std::lower_bound(cellKey.begin(), cellKey.end(), key(c0[0], cy, cz));
+        auto it = std::lower_bound(first, end, key(c0[0], cy, cz));
         const std::int64_t last = key(c1[0], cy, cz);
         auto stop = it;
-        while (stop != cellKey.end() && *stop <= last)
+        while (stop != end && *stop <= last)
           ++stop;
-        const std::uint32_t begin = cellStart[static_cast<std::size_t>(it - cellKey.begin())];
-        const std::uint32_t end = cellStart[static_cast<std::size_t>(stop - cellKey.begin())];
+        if (stop != it)
+          f(cellStart[static_cast<std::size_t>(it - cellKey.begin())], cellStart[static_cast<std::size_t>(stop - cellKey.begin())]);
+      }
+  };
+  // Lists a's neighbours in its own and the coarser levels (the pairs with coarser ones also
+  // into `handed`, as entries of the partner's list); true if an unlisted particle came within
+  // twice the margin.
+  struct Handed {
+    std::uint32_t to, entry;
+  };
+  auto visit = [&](std::size_t a, std::vector<std::uint32_t>& out, std::vector<Handed>& handed) {
+    bool nearMiss = false;
+    const double* xa = &s.x[3 * a];
+    const double ha = s.h[a], ma = mu[a];
+    const int la = levelOf(ha);
+    const std::uint32_t self = static_cast<std::uint32_t>(a * 32 + kNoShift);
+    for (int l = 0; l <= la; ++l) {
+      const double R = grow * std::max(ha, levelH[static_cast<std::size_t>(l)]) + std::max(ma, levelMu[static_cast<std::size_t>(l)]);
+      forCells(xa, R, l, [&](std::uint32_t begin, std::uint32_t end) {
         // Branch-free: every candidate is written, the list advances past those in range.
-        std::size_t m = out.size();
-        out.resize(m + (end - begin));
+        std::size_t at = out.size();
+        out.resize(at + (end - begin));
         std::uint32_t* o = out.data();
-        const std::uint32_t self = static_cast<std::uint32_t>(a * 32 + kNoShift);
         for (std::uint32_t r = begin; r < end; ++r) {
           const std::uint32_t e = sid[r];
-          const double cut = grow * std::max(ha, sh[r]) + margin;
+          const double pairMu = std::max(ma, smu[r]);
+          const double cut = grow * std::max(ha, sh[r]) + pairMu;
           const double* xb = &spos[3 * r];
           const double r2 = (xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
                             (xa[2] - xb[2]) * (xa[2] - xb[2]);
           const bool listed = (r2 < cut * cut) & (e != self);
-          o[m] = e;
-          m += listed;
-          nearMiss |= !listed & (e != self) & (r2 < (cut + margin) * (cut + margin));
+          o[at] = e;
+          at += listed;
+          nearMiss |= !listed & (e != self) & (r2 < (cut + pairMu) * (cut + pairMu));
+          if (l < la && listed) // b's image at the opposite shift is near a
+            handed.push_back({e / 32, static_cast<std::uint32_t>(a * 32 + (26 - e % 32))});
         }
-        out.resize(m);
-      }
+        out.resize(at);
+      });
+    }
     return nearMiss;
   };
   // A particle with no unlisted particle within twice the margin gets its clearance: how far
-  // the nearest unlisted particle (searched to four reaches) is beyond the pair's listing range
-  // without the margin; anybody farther has at least `far` minus the largest range to spare.
+  // the nearest unlisted particle is beyond the pair's listing range without the margin. Each
+  // level is searched to twice its reach from a (the finer ones to three margins beyond a's
+  // own range, unless that spans too many of their cells); anybody farther has at least that
+  // search radius minus the level's largest range to spare.
   const double far = 4.0 * reach;
   auto clearanceOf = [&](std::size_t a) {
     const double* xa = &s.x[3 * a];
     for (int k = 0; k < 3; ++k) // periodic images are listed only within one reach of the box
       if (par_.periodic[k] && (xa[k] < par_.boxLo[k] + far || xa[k] > par_.boxHi[k] - far))
         return 0.0;
-    double spare = far - grow * hmax;
-    for (std::int64_t cz = coord(xa[2] - far, 2); cz <= coord(xa[2] + far, 2); ++cz)
-      for (std::int64_t cy = coord(xa[1] - far, 1); cy <= coord(xa[1] + far, 1); ++cy) {
-        auto it = std::lower_bound(cellKey.begin(), cellKey.end(), key(coord(xa[0] - far, 0), cy, cz));
-        const std::int64_t last = key(coord(xa[0] + far, 0), cy, cz);
-        for (; it != cellKey.end() && *it <= last; ++it) {
-          const std::size_t c = static_cast<std::size_t>(it - cellKey.begin());
-          for (std::uint32_t r = cellStart[c]; r < cellStart[c + 1]; ++r) {
-            const std::uint32_t e = sid[r];
-            const std::size_t b = e / 32;
-            if (b == a && e % 32 == kNoShift)
-              continue;
-            const double* xb = &spos[3 * r];
-            const double d = std::sqrt((xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
-                                       (xa[2] - xb[2]) * (xa[2] - xb[2]));
-            const double range = grow * std::max(s.h[a], s.h[b]);
-            if (d >= range + margin) // listed ones are not spare
-              spare = std::min(spare, d - range);
-          }
-        }
+    const double ha = s.h[a], ma = mu[a];
+    const int la = levelOf(ha);
+    double spare = INFINITY;
+    for (int l = 0; l < levels; ++l) {
+      if (empty(l))
+        continue;
+      const double range = grow * std::max(ha, levelH[static_cast<std::size_t>(l)]);
+      const double ml = std::max(ma, levelMu[static_cast<std::size_t>(l)]);
+      const double R = l <= la ? 2.0 * (range + ml) : range + 3.0 * ml;
+      if (R > 8.0 * cellSize[static_cast<std::size_t>(l)]) { // a level far finer than a: too many cells
+        spare = std::min(spare, ma);                         // to search; every unlisted pair has a's margin
+        continue;
       }
-    return std::max(spare, margin); // unlisted: at least the margin
+      spare = std::min(spare, R - range);
+      forCells(xa, R, l, [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::uint32_t r = begin; r < end; ++r) {
+          const std::uint32_t e = sid[r];
+          if (e / 32 == a && e % 32 == kNoShift)
+            continue;
+          const double* xb = &spos[3 * r];
+          const double d = std::sqrt((xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
+                                     (xa[2] - xb[2]) * (xa[2] - xb[2]));
+          const double pairRange = grow * std::max(ha, sh[r]);
+          if (d >= pairRange + std::max(ma, smu[r])) // listed ones are not spare
+            spare = std::min(spare, d - pairRange);
+        }
+      });
+    }
+    return std::max(spare, ma); // unlisted: at least a's margin
   };
   // One pass: each thread lists a contiguous block of particles into its own buffer (in the
-  // grid's order, the same for any thread count), then the blocks are copied into place.
+  // grids' order, the same for any thread count), then the blocks are copied into place and
+  // the pairs handed over from finer particles are appended to their partners' lists, in the
+  // order of the finer particles (again the same for any thread count).
   nb_.start.assign(n + 1, 0);
   nb_.clearance.assign(n, 0.0);
   const int threads = n >= 1024 ? omp_get_max_threads() : 1;
   std::vector<std::vector<std::uint32_t>> buffers(static_cast<std::size_t>(threads));
+  std::vector<std::vector<Handed>> handedBy(static_cast<std::size_t>(threads));
 #pragma omp parallel num_threads(threads)
   {
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()), nt = static_cast<std::size_t>(omp_get_num_threads());
     const std::size_t a0 = n * t / nt, a1 = n * (t + 1) / nt;
     std::vector<std::uint32_t>& out = buffers[t];
+    std::vector<Handed>& handed = handedBy[t];
     out.clear();
+    handed.clear();
     for (std::size_t a = a0; a < a1; ++a) {
       const std::size_t before = out.size();
       if (!nb_.out[a]) {
-        if (!visit(a, out) && margin > 0.0) // with no margin the list is rebuilt at once anyway
+        if (!visit(a, out, handed) && margins) // with no margin the list is rebuilt at once anyway
           nb_.clearance[a] = clearanceOf(a);
       }
       nb_.start[a + 1] = static_cast<std::uint32_t>(out.size() - before);
@@ -477,16 +598,39 @@ void SphSolver::buildNeighbours(const SphState& s, double margin) {
   std::size_t total = 0;
   for (const auto& b : buffers)
     total += b.size();
+  for (const auto& h : handedBy)
+    total += h.size();
   if (total > 0xF0000000u)
     throw std::runtime_error("SPH: too many neighbour pairs (the smoothing lengths have grown too large)");
+  std::vector<std::uint32_t> own(nb_.start.begin() + 1, nb_.start.end());
+  for (const auto& h : handedBy)
+    for (const Handed& p : h)
+      ++nb_.start[p.to + 1];
   for (std::size_t a = 0; a < n; ++a)
     nb_.start[a + 1] += nb_.start[a];
   nb_.entry.resize(total);
-  std::size_t at = 0;
-  for (const auto& b : buffers) {
-    std::copy(b.begin(), b.end(), nb_.entry.begin() + static_cast<std::ptrdiff_t>(at));
-    at += b.size();
+  // Own entries: the buffers, read in thread order, hold them in ascending a.
+  std::vector<std::uint32_t> fill(n, 0);
+  std::size_t bi = 0, k = 0;
+  for (std::size_t a = 0; a < n; ++a) {
+    if (own[a] == 0)
+      continue;
+    while (k == buffers[bi].size())
+      ++bi, k = 0;
+    std::copy(buffers[bi].begin() + static_cast<std::ptrdiff_t>(k), buffers[bi].begin() + static_cast<std::ptrdiff_t>(k + own[a]),
+              nb_.entry.begin() + static_cast<std::ptrdiff_t>(nb_.start[a]));
+    k += own[a];
+    fill[a] = own[a];
   }
+  for (const auto& h : handedBy)
+    for (const Handed& p : h)
+      nb_.entry[nb_.start[p.to] + fill[p.to]++] = p.entry;
+}
+
+std::vector<std::uint32_t> SphSolver::neighboursOf(std::size_t a) const {
+  std::vector<std::uint32_t> list(nb_.entry.begin() + nb_.start[a], nb_.entry.begin() + nb_.start[a + 1]);
+  std::sort(list.begin(), list.end());
+  return list;
 }
 
 void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>& c) const {
@@ -978,18 +1122,6 @@ double SphSolver::step(double dt) {
   }
   const std::size_t n = s_.size();
   const bool xs = par_.xsph > 0.0;
-  double vmax = 0.0; // of the particles in the domain (the others have no neighbours)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (par_.domainRadius > 0.0 && outside(s_, i))
-      continue;
-    double v2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const double w = s_.v[3 * i + k] + (xs ? k1_.dx[3 * i + k] : 0.0);
-      v2 += w * w;
-    }
-    vmax = std::max(vmax, v2);
-  }
-  vmax = std::sqrt(vmax);
   // The predictor's state and rates live in members, so a step allocates nothing.
   SphState& mid = mid_;
   Rates& k2 = k2_;
@@ -1004,12 +1136,10 @@ double SphSolver::step(double dt) {
                                std::to_string(s_.x[3 * worst]) + ", " + std::to_string(s_.x[3 * worst + 1]) + ", " +
                                std::to_string(s_.x[3 * worst + 2]) + " m, material " +
                                std::to_string(s_.material[worst]) + ")");
-    // Rebuild the list when this step's motion (dt vmax, plus what the velocity gains) could
+    // Rebuild the list when this step's motion (dt |v|, plus what the velocity gains) could
     // bring an unlisted pair into range; the margin covers several steps.
-    if (!neighboursValid(s_, dt)) {
-      const double hmin = *std::min_element(s_.h.begin(), s_.h.end());
-      buildNeighbours(s_, std::max(par_.skin * hmin, 4.0 * dt * vmax));
-    }
+    if (!neighboursValid(s_, dt))
+      buildNeighbours(s_, dt);
     mid = s_;
     for (std::size_t i = 0; i < 3 * n; ++i) {
       mid.x[i] += dt * (s_.v[i] + (xs ? k1_.dx[i] : 0.0));

@@ -11,9 +11,11 @@
 // Courant and force time steps and error control (a step whose Euler predictor and Heun
 // corrector differ by more than a tolerance is taken again, shorter).
 //
-// Neighbours: a Verlet list built from a cell list with a margin (skin) for motion and for
-// growth of h, kept over steps until some pair could have come into range unlisted. Periodic axes are handled by storing, with
-// each neighbour, which image of it is near. OpenMP over particles; each particle sums only
+// Neighbours: a Verlet list built from cell lists, one grid per level of h (√2 apart, so a
+// graded target's fine particles do not scan cells sized for its coarse ones), with a margin
+// per particle (skin h, more for fast ones) for motion and for growth of h, kept over steps
+// until some pair could have come into range unlisted. Periodic axes are handled by storing,
+// with each neighbour, which image of it is near. OpenMP over particles; each particle sums only
 // its own rates, so results are the same bits for any thread count.
 #pragma once
 
@@ -59,7 +61,7 @@ struct SphParams {
   double courant = 0.3;
   double forceFactor = 0.2;        // Δt ≤ forceFactor sqrt(h / |a|)
   std::uint64_t fractureSeed = 1;  // random assignment of Grady–Kipp flaws to particles
-  double skin = 0.15;               // neighbour-list margin, in units of the smallest h
+  double skin = 0.15;               // each particle's neighbour-list margin, in units of its h (fast ones get more)
   bool rebuildEveryStep = false;    // no list kept over steps (to check that keeping them changes nothing)
   double errorTolerance = 0.02;    // largest relative Euler–Heun difference of a step (else retaken shorter)
   double minTimeStep = 0.0;        // a step below this stops the run (0: only a non-positive step)
@@ -98,6 +100,10 @@ public:
   void restore(double time, std::size_t steps, double nextStep);
   bool lateStage() const { return late_; }
   std::size_t steps() const { return steps_; }
+  // Particle a's listed neighbours (index * 32 + periodic image code) from the last list
+  // build, sorted, and its margin in that build (tests check them against all pairs).
+  std::vector<std::uint32_t> neighboursOf(std::size_t a) const;
+  double neighbourMargin(std::size_t a) const { return nb_.margin[a]; }
   const SphState& state() const { return s_; }
   const SphParams& params() const { return par_; }
   const std::vector<double>& pressure() const { return p_; }
@@ -121,14 +127,19 @@ private:
     std::vector<double> x, h;         // positions and smoothing lengths at the build
     std::vector<char> out;            // outside the domain at the build (no neighbours)
     std::vector<double> clearance;    // > 0: no unlisted particle within twice the margin; this much to spare (m)
-    double margin = 0.0, grow = 1.0;
+    std::vector<double> margin;       // each particle's: a pair is listed within the larger of its two (m)
+    std::vector<std::uint8_t> level;  // each particle's level of h (0: the largest)
+    std::size_t levels = 1;
+    double grow = 1.0;
   };
   void assignFlaws();
   // Switches the materials to the late-stage equations of state (scaling each particle's
   // deviatoric stress when `scaleStress`), then recomputes the current state's rates.
   void enterLateStage(bool scaleStress);
   void integrateDamage(SphState& s, const SphState& from, double dt, const Rates& a, const Rates* b) const;
-  void buildNeighbours(const SphState& s, double margin);
+  // Lists the pairs within grow max(h_a, h_b) plus the larger of their margins: each
+  // particle's is skin h, or more for one that moves fast in steps of dt (none when !margins).
+  void buildNeighbours(const SphState& s, double dt, bool margins = true);
   bool neighboursValid(const SphState& s, double dt) const; // for a step of dt
   // Positions into the periodic box, h from ρ, ρ by summation when asked, then pressure and
   // sound speed into p and c and the yield limit on the deviatoric stress.

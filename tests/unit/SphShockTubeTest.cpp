@@ -1,13 +1,16 @@
 // The Sod shock tube in a 3D slab of SPH particles against the exact Riemann solution, and
 // the conservation of momentum and energy by the hydrodynamic core.
 #include "sph/SphSolver.h"
+#include "common/Random.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <vector>
 
 using namespace craterkit;
 
@@ -215,6 +218,9 @@ TEST(SphSolver, FragmentsFlyingIntoABodyAreNeverMissedByTheNeighbourLists) {
   const double dx = 0.01, rho = 1000.0, m = rho * dx * dx * dx, v = 50.0;
   // Open space; then a box periodic in x, where the clump reaches the block through the face
   // (it is wrapped on the way, and its listed pairs must follow it to the other side).
+  // Fragments of the block's particles' mass, and of an eighth of it (half its h: the block
+  // and the fragments then sit on different levels of the neighbour grid).
+  for (double light : {1.0, 0.125})
   for (bool periodic : {false, true}) {
     SphParams par;
     par.materials = {fluidMaterial(eos)};
@@ -236,9 +242,9 @@ TEST(SphSolver, FragmentsFlyingIntoABodyAreNeverMissedByTheNeighbourLists) {
     const double dir = periodic ? 1.0 : -1.0, x0 = periodic ? 0.245 : 0.345;
     const double c1[3] = {x0, 0.045, 0.045}, c2[3] = {x0 + 0.006, 0.045, 0.045}, lone[3] = {0.045, -0.30, 0.045};
     const double vc[3] = {dir * v, 0.0, 0.0}, vl[3] = {0.0, v, 0.0};
-    s.add(c1, vc, m, rho, 0.0, 0);
-    s.add(c2, vc, m, rho, 0.0, 0);
-    s.add(lone, vl, m, rho, 0.0, 0);
+    s.add(c1, vc, light * m, rho, 0.0, 0);
+    s.add(c2, vc, light * m, rho, 0.0, 0);
+    s.add(lone, vl, light * m, rho, 0.0, 0);
     SphSolver solver(s, par);
     double closest = INFINITY; // of a fragment to the nearest block particle, over the run
     std::size_t steps = 0;
@@ -263,12 +269,88 @@ TEST(SphSolver, FragmentsFlyingIntoABodyAreNeverMissedByTheNeighbourLists) {
     for (std::size_t b = 0; b < block; ++b)
       for (int k = 0; k < 3; ++k)
         blockP[k] += m * end.v[3 * b + k];
-    std::printf("%s: %zu steps; closest approach %.3g dx; block momentum (%.3g, %.3g) of the fragments' (%.3g, %.3g)\n",
-                periodic ? "periodic in x" : "open", steps, closest / dx, blockP[0], blockP[1], 2.0 * dir * m * v, m * v);
+    std::printf("%s, fragments of %.3g the mass: %zu steps; closest approach %.3g dx; block momentum (%.3g, %.3g) of the "
+                "fragments' (%.3g, %.3g)\n",
+                periodic ? "periodic in x" : "open", light, steps, closest / dx, blockP[0], blockP[1],
+                2.0 * dir * light * m * v, light * m * v);
     EXPECT_GT(steps, 200u);       // far more steps than the margin lasts for fragments this fast
     EXPECT_GT(closest, 0.9 * dx); // the block's pressure stopped them (1.25 dx measured)
-    EXPECT_GT(dir * blockP[0], 0.3 * 2.0 * m * v); // and took up their momentum
-    EXPECT_GT(blockP[1], 0.3 * m * v);
+    EXPECT_GT(dir * blockP[0], 0.3 * 2.0 * light * m * v); // and took up their momentum
+    EXPECT_GT(blockP[1], 0.3 * light * m * v);
+  }
+}
+
+// The neighbour lists of particles whose smoothing lengths span a factor of ten (a graded
+// target: each level of h gets its own cell grid, and pairs with finer particles are handed
+// over from their side) hold exactly the pairs that a search over all pairs and all periodic
+// images finds: r below 1.05 max(h_a, h_b) (the list's allowance for h growing) plus the
+// larger of the two particles' margins (each at least 0.15 h, the default skin). Open space and a box periodic in x and z; at the first build (no margin) and after a
+// step (the margin set by the motion).
+TEST(SphSolver, NeighbourListsOfGradedSmoothingLengthsHoldExactlyThePairsInRange) {
+  EquationOfState eos;
+  eos.model = EquationOfState::Model::Murnaghan;
+  eos.murnaghanRho0 = 1000.0, eos.murnaghanK0 = 1e7, eos.murnaghanN = 1.0;
+  const double dx = 0.01, rho = 1000.0, L = 0.2;
+  for (bool periodic : {false, true}) {
+    SphParams par;
+    par.materials = {fluidMaterial(eos)};
+    par.rebuildEveryStep = true; // the list of a step is built from the state before it
+    if (periodic)
+      for (int k : {0, 2}) {
+        par.periodic[k] = true;
+        par.boxLo[k] = 0.0, par.boxHi[k] = L;
+      }
+    SphState s;
+    Random rng(periodic ? 11 : 7);
+    for (int i = 0; i < 2500; ++i) {
+      // Fine near the origin, coarse far from it (h from 0.2 to 2.2 dx), as in a graded target.
+      const double x[3] = {rng.uniform(0.0, L), rng.uniform(0.0, L), rng.uniform(0.0, L)};
+      const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) / (std::sqrt(3.0) * L);
+      const double v[3] = {rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)};
+      const double f = std::pow(10.0, 3.0 * r - 2.0) * rng.uniform(0.5, 1.5); // mass, in rho dx^3
+      s.add(x, v, f * rho * dx * dx * dx, rho, 0.0, 0);
+    }
+    SphSolver solver(s, par);
+    for (int build = 0; build < 2; ++build) {
+      const SphState before = solver.state();
+      if (build == 1)
+        solver.step();
+      double margin = 0.0; // the largest
+      for (std::size_t a = 0; a < before.size(); ++a) {
+        EXPECT_GE(solver.neighbourMargin(a), 0.15 * before.h[a] * (build == 1)); // skin h at least
+        margin = std::max(margin, solver.neighbourMargin(a));
+      }
+      EXPECT_EQ(margin > 0.0, build == 1);
+      double hmin = INFINITY, hmax = 0.0;
+      for (double h : before.h)
+        hmin = std::min(hmin, h), hmax = std::max(hmax, h);
+      EXPECT_GT(hmax / hmin, 8.0);
+      std::size_t pairs = 0, mismatched = 0;
+      for (std::size_t a = 0; a < before.size(); ++a) {
+        std::vector<std::uint32_t> expected;
+        for (std::size_t b = 0; b < before.size(); ++b)
+          for (int sx = -1; sx <= 1; ++sx)
+            for (int sz = -1; sz <= 1; ++sz) {
+              if ((sx || sz) && !periodic)
+                continue;
+              if (b == a && !sx && !sz)
+                continue;
+              const double d[3] = {before.x[3 * a] - before.x[3 * b] - sx * L, before.x[3 * a + 1] - before.x[3 * b + 1],
+                                   before.x[3 * a + 2] - before.x[3 * b + 2] - sz * L};
+              const double cut = 1.05 * std::max(before.h[a], before.h[b]) +
+                                 std::max(solver.neighbourMargin(a), solver.neighbourMargin(b));
+              if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut)
+                expected.push_back(static_cast<std::uint32_t>(b * 32 + (sx + 1) + 3 + 9 * (sz + 1)));
+            }
+        std::sort(expected.begin(), expected.end());
+        pairs += expected.size();
+        mismatched += expected != solver.neighboursOf(a);
+      }
+      std::printf("%s, build %d (margins up to %.3g m): %zu listed pairs, %zu particles with a list unlike the search's\n",
+                  periodic ? "periodic in x and z" : "open", build, margin, pairs, mismatched);
+      EXPECT_GT(pairs, 10u * before.size());
+      EXPECT_EQ(mismatched, 0u);
+    }
   }
 }
 
@@ -284,7 +366,9 @@ TEST(SphSolver, KeptNeighbourListsFollowParticlesThroughPeriodicFaces) {
   const int n = 10;
   // Slow against the sound speed, so that a list lasts tens of steps.
   const double dx = 0.01, rho = 1100.0, m = rho * dx * dx * dx, u[3] = {2.0, 0.8, -0.3};
-  auto run = [&](bool rebuild) {
+  // Equal particles; and a graded medium, the particles of half the box an eighth of the mass
+  // (half the h: two levels of the neighbour grid, each particle with its own margin).
+  auto run = [&](bool rebuild, bool graded) {
     SphParams par;
     par.materials = {fluidMaterial(eos)};
     par.rebuildEveryStep = rebuild;
@@ -297,21 +381,27 @@ TEST(SphSolver, KeptNeighbourListsFollowParticlesThroughPeriodicFaces) {
       for (int j = 0; j < n; ++j)
         for (int k = 0; k < n; ++k) {
           const double x[3] = {(i + 0.5) * dx, (j + 0.5) * dx, (k + 0.5) * dx};
-          s.add(x, u, m, rho, 0.0, 0);
+          s.add(x, u, graded && i < n / 2 ? m / 8.0 : m, rho, 0.0, 0);
         }
     SphSolver solver(s, par);
     for (int step = 0; step < 400; ++step) // the outer layers cross the x faces from step 67 on
       solver.step();
     return solver.state();
   };
-  const SphState kept = run(false), rebuilt = run(true);
-  double dv = 0.0, drho = 0.0;
-  for (std::size_t i = 0; i < kept.size(); ++i) {
-    for (int k = 0; k < 3; ++k)
-      dv = std::max(dv, std::abs(kept.v[3 * i + k] - rebuilt.v[3 * i + k]));
-    drho = std::max(drho, std::abs(kept.rho[i] - rebuilt.rho[i]));
+  for (bool graded : {false, true}) {
+    const SphState kept = run(false, graded), rebuilt = run(true, graded);
+    double dv = 0.0, drho = 0.0, vmax = 0.0;
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        dv = std::max(dv, std::abs(kept.v[3 * i + k] - rebuilt.v[3 * i + k]));
+        vmax = std::max(vmax, std::abs(kept.v[3 * i + k] - u[k]));
+      }
+      drho = std::max(drho, std::abs(kept.rho[i] - rebuilt.rho[i]));
+    }
+    std::printf("%s: kept against rebuilt lists: velocity %.3g m/s, density %.3g kg/m^3 apart (largest velocity "
+                "change %.3g m/s)\n",
+                graded ? "graded" : "equal particles", dv, drho, vmax);
+    EXPECT_LT(dv, 1e-9);
+    EXPECT_LT(drho, 1e-9);
   }
-  std::printf("kept against rebuilt lists: velocity %.3g m/s, density %.3g kg/m^3 apart\n", dv, drho);
-  EXPECT_LT(dv, 1e-9);
-  EXPECT_LT(drho, 1e-9);
 }
