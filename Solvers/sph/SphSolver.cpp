@@ -405,7 +405,7 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
   std::vector<std::size_t> levelSize(static_cast<std::size_t>(levels) + 1, 0);
   for (std::size_t q = 0; q < m; ++q) {
     const double h = s.h[id[q] / 32];
-    const int l = levelOf(h);
+    const int l = nb_.level[id[q] / 32];
     level[q] = static_cast<std::uint8_t>(l);
     levelH[static_cast<std::size_t>(l)] = std::max(levelH[static_cast<std::size_t>(l)], h);
     levelMu[static_cast<std::size_t>(l)] = std::max(levelMu[static_cast<std::size_t>(l)], mu[id[q] / 32]);
@@ -500,7 +500,7 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
     bool nearMiss = false;
     const double* xa = &s.x[3 * a];
     const double ha = s.h[a], ma = mu[a];
-    const int la = levelOf(ha);
+    const int la = nb_.level[a];
     const std::uint32_t self = static_cast<std::uint32_t>(a * 32 + kNoShift);
     for (int l = 0; l <= la; ++l) {
       const double R = grow * std::max(ha, levelH[static_cast<std::size_t>(l)]) + std::max(ma, levelMu[static_cast<std::size_t>(l)]);
@@ -540,7 +540,7 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
       if (par_.periodic[k] && (xa[k] < par_.boxLo[k] + far || xa[k] > par_.boxHi[k] - far))
         return 0.0;
     const double ha = s.h[a], ma = mu[a];
-    const int la = levelOf(ha);
+    const int la = nb_.level[a];
     double spare = INFINITY;
     for (int l = 0; l < levels; ++l) {
       if (empty(l))
@@ -609,8 +609,8 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
   for (std::size_t a = 0; a < n; ++a)
     nb_.start[a + 1] += nb_.start[a];
   nb_.entry.resize(total);
-  // Own entries: the buffers, read in thread order, hold them in ascending a.
-  std::vector<std::uint32_t> fill(n, 0);
+  // Own entries: the buffers, read in thread order, hold them in ascending a. Then `own`
+  // counts on as each list's fill.
   std::size_t bi = 0, k = 0;
   for (std::size_t a = 0; a < n; ++a) {
     if (own[a] == 0)
@@ -620,11 +620,10 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
     std::copy(buffers[bi].begin() + static_cast<std::ptrdiff_t>(k), buffers[bi].begin() + static_cast<std::ptrdiff_t>(k + own[a]),
               nb_.entry.begin() + static_cast<std::ptrdiff_t>(nb_.start[a]));
     k += own[a];
-    fill[a] = own[a];
   }
   for (const auto& h : handedBy)
     for (const Handed& p : h)
-      nb_.entry[nb_.start[p.to] + fill[p.to]++] = p.entry;
+      nb_.entry[nb_.start[p.to] + own[p.to]++] = p.entry;
 }
 
 std::vector<std::uint32_t> SphSolver::neighboursOf(std::size_t a) const {
