@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <queue>
 #include <unordered_map>
 
 namespace craterkit {
@@ -47,6 +48,84 @@ double weight(double r, double h) {
 
 Eigen::Vector3d vec(const std::vector<double>& a, std::size_t i) { return {a[3 * i], a[3 * i + 1], a[3 * i + 2]}; }
 
+double meanMass(const ParticleSet& p) {
+  double m = 0.0;
+  for (double mi : p.mass)
+    m += mi;
+  return p.size() ? m / static_cast<double>(p.size()) : 0.0;
+}
+
+// What becomes one ejecta particle: mass, centre of mass, velocity, and the angular momentum
+// about its centre (its spin).
+struct Piece {
+  double m = 0.0, x[3] = {0, 0, 0}, v[3] = {0, 0, 0}, L[3] = {0, 0, 0};
+};
+
+// Merges piece b into a: mass and momentum add, the centre is the common centre of mass, and
+// the angular momentum about it keeps the two pieces' motions relative to it, so mass, momentum
+// and angular momentum about any point are unchanged.
+void merge(Piece& a, const Piece& b) {
+  const double m = a.m + b.m;
+  Eigen::Vector3d X, V;
+  for (int k = 0; k < 3; ++k) {
+    X(k) = (a.m * a.x[k] + b.m * b.x[k]) / m;
+    V(k) = (a.m * a.v[k] + b.m * b.v[k]) / m;
+  }
+  Eigen::Vector3d L(a.L[0] + b.L[0], a.L[1] + b.L[1], a.L[2] + b.L[2]);
+  for (const Piece* q : {static_cast<const Piece*>(&a), &b}) {
+    const Eigen::Vector3d r = Eigen::Vector3d(q->x[0], q->x[1], q->x[2]) - X;
+    const Eigen::Vector3d u = Eigen::Vector3d(q->v[0], q->v[1], q->v[2]) - V;
+    L += q->m * r.cross(u);
+  }
+  a.m = m;
+  for (int k = 0; k < 3; ++k)
+    a.x[k] = X(k), a.v[k] = V(k), a.L[k] = L(k);
+}
+
+// The grouped ejecta of a thin or sparse curtain fill their cubes only in part: a cube with one
+// SPH particle would give a grain a fraction of the bed's size, and the smallest grain sets the
+// DEM's time step. So each piece lighter than `light` joins its nearest piece (centre to centre)
+// if that one lies within `reach`, the lightest first, until every piece within reach of
+// another is at least that heavy. O(n²) in the pieces (a curtain's few thousand at most).
+void mergeLightPieces(std::vector<Piece>& pieces, double light, double reach) {
+  if (!(light > 0.0) || !(reach > 0.0) || pieces.size() < 2)
+    return;
+  std::vector<char> alive(pieces.size(), 1);
+  using Entry = std::pair<double, std::size_t>; // mass, piece
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> lightest;
+  for (std::size_t k = 0; k < pieces.size(); ++k)
+    if (pieces[k].m < light)
+      lightest.push({pieces[k].m, k});
+  while (!lightest.empty()) {
+    const auto [m, k] = lightest.top();
+    lightest.pop();
+    if (!alive[k] || m != pieces[k].m)
+      continue; // merged away, or grown since
+    std::size_t best = pieces.size();
+    double bestD2 = reach * reach;
+    for (std::size_t j = 0; j < pieces.size(); ++j) {
+      if (j == k || !alive[j])
+        continue;
+      double d2 = 0.0;
+      for (int a = 0; a < 3; ++a)
+        d2 += (pieces[j].x[a] - pieces[k].x[a]) * (pieces[j].x[a] - pieces[k].x[a]);
+      if (d2 <= bestD2)
+        bestD2 = d2, best = j;
+    }
+    if (best == pieces.size())
+      continue; // alone: it stays as light as it is
+    merge(pieces[best], pieces[k]);
+    alive[k] = 0;
+    if (pieces[best].m < light)
+      lightest.push({pieces[best].m, best});
+  }
+  std::size_t w = 0;
+  for (std::size_t k = 0; k < pieces.size(); ++k)
+    if (alive[k])
+      pieces[w++] = pieces[k];
+  pieces.resize(w);
+}
+
 } // namespace
 
 bool TargetRegion::contains(const double x[3]) const {
@@ -73,6 +152,8 @@ void HandoffParams::validate() const {
     throw InputError("ImpactHandoff: the ejecta grain density must not be negative (0: the bed's)");
   if (!(gravity >= 0.0) || !std::isfinite(gravity))
     throw InputError("ImpactHandoff: the gravity for ballistic landing must be finite and not negative");
+  if (!(groupReach >= 0.0) || !std::isfinite(groupReach))
+    throw InputError("ImpactHandoff: the reach for merging light ejecta groups must not be negative");
 }
 
 HandoffTotals totalsOf(const ParticleSet& p, const std::vector<std::size_t>* subset) {
@@ -442,9 +523,6 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   // each cube of the bed's mean particle diameter merged into one particle at their centre of
   // mass with their momentum and, as spin, their angular momentum about that centre, so that
   // mass, momentum and angular momentum are all kept.
-  struct Piece {
-    double m = 0.0, x[3] = {0, 0, 0}, v[3] = {0, 0, 0}, L[3] = {0, 0, 0};
-  };
   std::vector<Piece> pieces;
   if (params.groupEjecta && !ejecta.empty()) {
     double rb = 0.0;
@@ -476,6 +554,7 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
       }
       pieces.push_back(q);
     }
+    mergeLightPieces(pieces, 0.5 * meanMass(bed), params.groupReach * edge);
   } else {
     for (std::size_t i : ejecta) {
       Piece q;

@@ -19,7 +19,9 @@
 // 5. Ejecta become DEM particles of equal mass and velocity (grain density of the bed), at
 //    their SPH positions (or, grouped, one per cube of the bed's mean particle diameter, at the
 //    group's centre of mass with its momentum and its angular momentum about that centre as
-//    spin), moved along their own velocity (which changes neither momentum nor
+//    spin; a group lighter than half a mean bed grain then joins the nearest group within
+//    groupReach cube edges, so that a sparse curtain makes no grains much smaller than the
+//    bed's, which would set the DEM's time step), moved along their own velocity (which changes neither momentum nor
 //    angular momentum) to the nearest place, forward first, where they overlap nothing by more
 //    than 1 % of a radius and stay inside the container's walls; one with no such place keeps
 //    its position with a smaller radius (same mass and momentum) that fits, if one does, and
@@ -65,6 +67,9 @@ struct HandoffParams {
   double ejectaDensity = 0.0;    // kg/m³ of ejecta grains; 0: the bed's mean grain density
   int ejectaMaterial = -1;       // -1: the bed's first particle's material
   bool groupEjecta = false;      // one particle per cube of the bed's mean diameter instead of per SPH particle
+  // Grouped: a cube's piece lighter than half a mean bed grain joins the nearest piece within
+  // this many cube edges (0: never), so that a sparse curtain does not make small grains.
+  double groupReach = 2.0;
   bool dropEjecta = false;       // no particles for the ejecta (they escape): only their totals are reported
   // Compact SPH material above the target's surface (higher than one alpha radius over it: the
   // ejecta curtain of a late hand-off, slower than the limit) has no bed particle to lend its

@@ -302,6 +302,61 @@ TEST(Handoff, GroupedEjectaKeepMassMomentumAndAngularMomentum) {
   EXPECT_LT(c.lErr, 1e-10);
 }
 
+// A sparse curtain (ImpactHandoff's Dropped and GroupedToBedSize modes): four rings of 100 SPH
+// particles, 0.031 m apart along a ring and 0.067 m between rings, above the surface, moving
+// out and up, each particle 0.3 of a bed grain's mass, so that most cubes of the bed's grain
+// diameter (0.05 m) hold one or two of them. Grouped by cube alone they make grains of 0.67-0.85
+// of the bed's radius (the smallest sets the DEM's step); light groups join their nearest
+// neighbour within two cube edges, so every grain but one weighs at least half a bed grain: the
+// exception is a particle alone 0.4 m above the rings, which stays as light as it is. Mass,
+// momentum and angular momentum (spin included) are those of the SPH curtain, either way.
+TEST(Handoff, GroupedSparseCurtainBecomesGrainsOfAtLeastHalfTheBedsMass) {
+  SphSnapshot sph = lattice([](const double*, double* v) { v[0] = v[1] = v[2] = 0.0; });
+  const double grain = kRho / (M_PI / 6.0) * 4.0 / 3.0 * M_PI * 0.025 * 0.025 * 0.025; // bed() grains
+  auto add = [&](const double x[3], const double v[3]) {
+    sph.x.insert(sph.x.end(), x, x + 3);
+    sph.v.insert(sph.v.end(), v, v + 3);
+    sph.mass.push_back(0.3 * grain);
+    sph.h.push_back(2.5 * kDx);
+  };
+  for (int k = 0; k < 400; ++k) {
+    const double phi = 2.0 * M_PI * (k % 100) / 100.0, lift = 0.2 + 0.2 * (k / 100) / 3.0;
+    const double c = std::cos(phi), s = std::sin(phi);
+    const double x[3] = {0.5 * c, 0.5 * s, lift}, v[3] = {0.3 * c - 0.1 * s, 0.3 * s + 0.1 * c, 0.2 + 0.1 * (k % 7)};
+    add(x, v);
+  }
+  const double alone[3] = {0.5, 0.0, 0.8}, up[3] = {0.0, 0.1, 0.3};
+  add(alone, up);
+  for (double reach : {0.0, 2.0}) {
+    HandoffParams params;
+    params.groupEjecta = params.dropEjecta = true;
+    params.groupReach = reach;
+    const HandoffResult r = handoff(sph, bed(), hemisphere(), params);
+    ASSERT_EQ(r.curtainCount, 401u);
+    std::size_t grains = 0, light = 0;
+    double rmin = INFINITY;
+    for (std::size_t i = 0; i < r.particles.size(); ++i)
+      if (r.origin[i] == 1) {
+        ++grains;
+        light += r.particles.mass[i] < 0.5 * grain * (1.0 - 1e-12);
+        rmin = std::min(rmin, r.particles.radius[i]);
+      }
+    std::printf("reach %.0f cube edges: %zu curtain grains, %zu lighter than half a bed grain, smallest radius "
+                "%.4f m (bed 0.025 m)\n", reach, grains, light, rmin);
+    if (reach > 0.0) {
+      EXPECT_EQ(light, 1u); // the lone particle
+    } else {
+      EXPECT_GT(light, 100u);
+    }
+    const double scale = r.sphCurtain.mass * 0.5;
+    EXPECT_NEAR(r.demEjecta.mass, r.sphCurtain.mass, 1e-12 * r.sphCurtain.mass);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(r.demEjecta.momentum[a], r.sphCurtain.momentum[a], 1e-10 * scale);
+      EXPECT_NEAR(r.demEjecta.angularMomentum[a], r.sphCurtain.angularMomentum[a], 1e-10 * scale);
+    }
+  }
+}
+
 // A late hand-off: the hemisphere moves uniformly and a curtain of slow SPH material (a ring
 // of 400 particles, 0.2-0.4 m above the surface, rising at 0.5 m/s: below the 1 m/s limit)
 // flies above it. The curtain becomes particles (kept even when ejecta are dropped), the
