@@ -2,16 +2,20 @@
 //
 // A bounded priority queue after Paul (2007, J. Comput. Phys. 221:615), as DynamO uses it:
 // time is cut into buckets of equal width; a ring of buckets covering the near future holds
-// unsorted lists, later events wait in an overflow list, and only the current bucket is kept
+// unsorted events, later events wait in an overflow list, and only the current bucket is kept
 // sorted, in a small binary heap. The bucket width adapts: it is quartered or quadrupled
-// whenever a turn of the ring sees far more or far fewer events than buckets.
+// whenever a turn of the ring sees far more or far fewer events than it has buckets for.
 //
-// The lists hold the events themselves, not disk indices, and nothing is ever unlinked: a
-// disk's new event is appended with the disk's next generation number, and an entry whose
-// generation is no longer the disk's is dropped when it is reached. Scheduling is an append,
-// draining a bucket a sequential read, and the heap compares times it holds, so the queue
-// touches no other disk's record (the doubly linked lists it replaced missed the cache on
-// both neighbours of every disk they moved).
+// A bucket is a list of chunks of kChunk events, not of single events: scheduling writes the
+// event into the bucket's open chunk, and draining a bucket reads its chunks front to back, so
+// the walk costs one cache miss per chunk instead of one per event (a bucket holds about
+// kChunk events at the tuned width). The bucket table (open chunk and its fill) is small enough
+// to stay in cache; freed chunks are reused first, while they are still in cache.
+//
+// Nothing is ever unlinked: a disk's new event is appended with the disk's next generation
+// number, and an entry whose generation is no longer the disk's is dropped when it is reached.
+// Scheduling is an append, draining a sequential read, and the heap compares times it holds,
+// so the queue touches no other disk's record.
 //
 // Ordering is exact: the earliest time wins, ties go to the lower disk index. Payload is any
 // event type with a member `double t`.
@@ -36,22 +40,17 @@ public:
   // n disks without events at time `now`.
   void reset(std::size_t n, double now) {
     gen_.assign(n, 0);
+    // Fewer, fuller buckets where the events do not fit in cache (one miss per chunk, not per
+    // event); where they do, emptier ones keep the current bucket's heap small.
+    perBucket_ = n >= kFullBuckets ? kChunk : 2;
     buckets_ = 64;
-    while (buckets_ < n)
+    while (buckets_ * perBucket_ < n)
       buckets_ *= 2;
-    head_.assign(buckets_, -1);
-    pool_.clear();
-    free_ = -1;
-    waiting_.clear();
-    heap_.clear();
-    listed_ = 0;
     width_ = 1.0;
-    current_ = bucketOf(now);
-    turnStart_ = current_;
-    popped_ = 0;
+    clear(now);
   }
 
-  // Sizes the buckets from the pending events: about two per bucket over their mean horizon.
+  // Sizes the buckets from the pending events: about perBucket_ per bucket over their mean horizon.
   void tune(double now) {
     double sum = 0.0;
     std::size_t count = 0;
@@ -72,6 +71,28 @@ public:
 
   // The earliest event, or nullptr if there is none. Valid until the next call of any member.
   const Item* top() {
+    while (!heap_.empty()) {
+      if (valid(heap_.front()))
+        return &heap_.front();
+      heapPop();
+    }
+    return advance();
+  }
+
+  // Removes the event top() returned.
+  void pop() {
+    heapPop();
+    ++popped_;
+  }
+
+private:
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  static constexpr std::uint32_t kChunk = 7; // events per chunk: 7 x 32 bytes + the link, 4 cache lines
+  static constexpr std::size_t kFullBuckets = 32768; // from this many disks, about kChunk events a bucket
+
+  // The current bucket is used up: move on to the next one with events (out of line, so that
+  // top() stays small enough to inline).
+  __attribute__((noinline)) const Item* advance() {
     while (true) {
       while (!heap_.empty()) {
         if (valid(heap_.front()))
@@ -99,36 +120,30 @@ public:
         const std::uint64_t seen = popped_;
         popped_ = 0;
         turnStart_ = current_;
-        if (seen > 16 * buckets_ || seen * 8 < buckets_) {
-          rebuild(width_ * (seen > 16 * buckets_ ? 0.25 : 4.0), static_cast<double>(current_) * width_);
+        const bool crowded = seen > 8 * perBucket_ * buckets_, sparse = seen * 8 < buckets_;
+        if (crowded || sparse) {
+          rebuild(width_ * (crowded ? 0.25 : 4.0), static_cast<double>(current_) * width_);
           continue;
         }
         refill();
       }
       // The current bucket's valid events go into the heap.
-      std::int32_t& head = head_[slotOf(current_)];
-      for (std::int32_t k = head; k >= 0;) {
-        Node& node = pool_[static_cast<std::size_t>(k)];
-        const std::int32_t following = node.next;
-        if (valid(node.item))
-          heapPush(node.item);
-        node.next = free_;
+      Bucket& b = table_[slotOf(current_)];
+      std::uint32_t fill = b.fill;
+      for (std::int32_t k = b.open; k >= 0; fill = kChunk) {
+        Chunk& chunk = chunks_[static_cast<std::size_t>(k)];
+        for (std::uint32_t e = 0; e < fill; ++e)
+          if (valid(chunk.items[e]))
+            heapPush(chunk.items[e]);
+        listed_ -= fill;
+        const std::int32_t following = chunk.next;
+        chunk.next = free_;
         free_ = k;
-        --listed_;
         k = following;
       }
-      head = -1;
+      b = Bucket{};
     }
   }
-
-  // Removes the event top() returned.
-  void pop() {
-    heapPop();
-    ++popped_;
-  }
-
-private:
-  static constexpr double kInf = std::numeric_limits<double>::infinity();
 
   bool valid(const Item& it) const { return gen_[it.disk] == it.gen; }
 
@@ -144,28 +159,35 @@ private:
     for (const Item& it : heap_)
       if (valid(it))
         f(it);
-    for (std::int32_t h : head_)
-      for (std::int32_t k = h; k >= 0; k = pool_[static_cast<std::size_t>(k)].next)
-        if (valid(pool_[static_cast<std::size_t>(k)].item))
-          f(pool_[static_cast<std::size_t>(k)].item);
+    for (const Bucket& b : table_) {
+      std::uint32_t fill = b.fill;
+      for (std::int32_t k = b.open; k >= 0; k = chunks_[static_cast<std::size_t>(k)].next, fill = kChunk)
+        for (std::uint32_t e = 0; e < fill; ++e)
+          if (valid(chunks_[static_cast<std::size_t>(k)].items[e]))
+            f(chunks_[static_cast<std::size_t>(k)].items[e]);
+    }
     for (const Item& it : waiting_)
       if (valid(it))
         f(it);
+  }
+
+  void clear(double now) {
+    current_ = bucketOf(now);
+    turnStart_ = current_;
+    popped_ = 0;
+    table_.assign(buckets_, Bucket{});
+    chunks_.clear();
+    free_ = -1;
+    waiting_.clear();
+    heap_.clear();
+    listed_ = 0;
   }
 
   void rebuild(double width, double now) {
     std::vector<Item> all;
     forEachValid([&](const Item& it) { all.push_back(it); });
     width_ = width;
-    current_ = bucketOf(now);
-    turnStart_ = current_;
-    popped_ = 0;
-    head_.assign(buckets_, -1);
-    pool_.clear();
-    free_ = -1;
-    waiting_.clear();
-    heap_.clear();
-    listed_ = 0;
+    clear(now);
     for (const Item& it : all)
       insert(it);
   }
@@ -190,16 +212,20 @@ private:
     if (b <= current_) {
       heapPush(it);
     } else if (b < current_ + static_cast<std::int64_t>(buckets_)) {
-      std::int32_t k = free_;
-      if (k >= 0) {
-        free_ = pool_[static_cast<std::size_t>(k)].next;
-      } else {
-        k = static_cast<std::int32_t>(pool_.size());
-        pool_.emplace_back();
+      Bucket& bucket = table_[slotOf(b)];
+      if (bucket.open < 0 || bucket.fill == kChunk) {
+        std::int32_t k = free_;
+        if (k >= 0) {
+          free_ = chunks_[static_cast<std::size_t>(k)].next;
+        } else {
+          k = static_cast<std::int32_t>(chunks_.size());
+          chunks_.emplace_back();
+        }
+        chunks_[static_cast<std::size_t>(k)].next = bucket.open;
+        bucket.open = k;
+        bucket.fill = 0;
       }
-      std::int32_t& head = head_[slotOf(b)];
-      pool_[static_cast<std::size_t>(k)] = Node{it, head};
-      head = k;
+      chunks_[static_cast<std::size_t>(bucket.open)].items[bucket.fill++] = it;
       ++listed_;
     } else {
       waiting_.push_back(it);
@@ -219,20 +245,24 @@ private:
     heap_.pop_back();
   }
 
-  std::size_t buckets_ = 64, listed_ = 0;
+  std::size_t buckets_ = 64, listed_ = 0, perBucket_ = 2;
   double width_ = 1.0;
   std::int64_t current_ = 0, turnStart_ = 0;
   std::uint64_t popped_ = 0;
   std::vector<std::uint32_t> gen_;
-  // The ring's lists: singly linked nodes in a pool with a free list (recently freed nodes,
-  // still in cache, are reused first).
-  struct Node {
-    Item item;
-    std::int32_t next;
+  // The ring: per bucket its open chunk (the one being filled, at the head of the bucket's
+  // list of chunks; the others are full) and how many events that one holds.
+  struct Bucket {
+    std::int32_t open = -1;
+    std::uint32_t fill = 0;
   };
-  std::vector<Node> pool_;
-  std::int32_t free_ = -1;
-  std::vector<std::int32_t> head_;
+  struct alignas(64) Chunk {
+    Item items[kChunk];
+    std::int32_t next = -1;
+  };
+  std::vector<Bucket> table_;
+  std::vector<Chunk> chunks_;
+  std::int32_t free_ = -1; // free chunks, most recently freed first
   std::vector<Item> waiting_; // beyond the ring
   std::vector<Item> heap_;
 };
