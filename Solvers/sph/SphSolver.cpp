@@ -573,6 +573,7 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
   // grids' order, the same for any thread count), then the blocks are copied into place and
   // the pairs handed over from finer particles are appended to their partners' lists, in the
   // order of the finer particles (again the same for any thread count).
+  ++builds_;
   nb_.start.assign(n + 1, 0);
   nb_.clearance.assign(n, 0.0);
   const int threads = n >= 1024 ? omp_get_max_threads() : 1;

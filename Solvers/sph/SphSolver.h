@@ -100,6 +100,7 @@ public:
   void restore(double time, std::size_t steps, double nextStep);
   bool lateStage() const { return late_; }
   std::size_t steps() const { return steps_; }
+  std::size_t neighbourBuilds() const { return builds_; } // neighbour lists built so far
   // Particle a's listed neighbours (index * 32 + periodic image code) from the last list
   // build, sorted, and its margin in that build (tests check them against all pairs).
   std::vector<std::uint32_t> neighboursOf(std::size_t a) const;
@@ -172,7 +173,7 @@ private:
   std::vector<double> p_, c_;  // pressure and sound speed of the current state
   mutable std::vector<double> nbMoved_; // neighboursValid's displacement bounds (reused)
   double time_ = 0.0, stableStep_ = 0.0;
-  std::size_t steps_ = 0;
+  std::size_t steps_ = 0, builds_ = 0;
   bool late_ = false;
 };
 

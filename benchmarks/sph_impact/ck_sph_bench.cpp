@@ -136,6 +136,6 @@ int main(int argc, char** argv) {
     }
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("%zu steps in %.2f s: %.3g particle-steps/s\n", solver.steps(), wall,
-              static_cast<double>(n) * solver.steps() / wall);
+  std::printf("%zu steps in %.2f s: %.3g particle-steps/s (%zu neighbour-list builds)\n", solver.steps(), wall,
+              static_cast<double>(n) * solver.steps() / wall, solver.neighbourBuilds());
 }
