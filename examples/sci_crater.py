@@ -323,7 +323,7 @@ def main(argv):
     r_min = float(vtk_to_numpy(dem0.GetPointData().GetArray("Radius")).min())
     steps_estimate = dem_time * max_speed * 30.0 / (math.pi * math.sqrt(0.5) * args.max_overlap * r_min)
     say(f"[4/5] DEM to {t0 + dem_time:.3g} s: about {steps_estimate:.3g} steps of {dem0.GetNumberOfPoints()} particles "
-        f"(stiffness for {max_speed:.3g} m/s)")
+        f"(stiffness for {max_speed:.3g} m/s and the smallest grain, r = {r_min:.3g} m; the bed's {grain_radius:.3g} m)")
     checkpoint = args.checkpoint or os.path.join(args.output_dir, "dem.ckdem")
     frames = [t0 + dem_time * (k + 1) / args.frames for k in range(args.frames)]
     dem = simple.DEMIntegrator(Input=hand, Container="FromInput", GravityModel="Uniform",
