@@ -8,9 +8,10 @@
 //
 // A bucket is a list of chunks of kChunk events, not of single events: scheduling writes the
 // event into the bucket's open chunk, and draining a bucket reads its chunks front to back, so
-// the walk costs one cache miss per chunk instead of one per event (a bucket holds about
-// kChunk events at the tuned width). The bucket table (open chunk and its fill) is small enough
-// to stay in cache; freed chunks are reused first, while they are still in cache.
+// the walk costs one cache miss per chunk instead of one per event. From kManyDisks disks on
+// the ring has kChunk times fewer buckets than disks (a bucket near the present then holds a
+// few chunks at the tuned width); below, as many buckets as disks, as before chunks. The
+// bucket table (open chunk and its fill) stays in cache; freed chunks are reused first.
 //
 // Nothing is ever unlinked: a disk's new event is appended with the disk's next generation
 // number, and an entry whose generation is no longer the disk's is dropped when it is reached.
@@ -37,12 +38,13 @@ public:
     std::uint32_t disk, gen;
   };
 
-  // n disks without events at time `now`.
-  void reset(std::size_t n, double now) {
+  // n disks without events at time `now`; the ring has about n / perBucket buckets (0: kChunk
+  // from kManyDisks disks on, else 1).
+  void reset(std::size_t n, double now, std::size_t perBucket = 0) {
     gen_.assign(n, 0);
     // Fewer, fuller buckets where the events do not fit in cache (one miss per chunk, not per
     // event); where they do, emptier ones keep the current bucket's heap small.
-    perBucket_ = n >= kFullBuckets ? kChunk : 2;
+    perBucket_ = perBucket > 0 ? perBucket : n >= kManyDisks ? kChunk : 1;
     buckets_ = 64;
     while (buckets_ * perBucket_ < n)
       buckets_ *= 2;
@@ -50,7 +52,7 @@ public:
     clear(now);
   }
 
-  // Sizes the buckets from the pending events: about perBucket_ per bucket over their mean horizon.
+  // Sizes the buckets from the pending events: the ring spans four times their mean horizon.
   void tune(double now) {
     double sum = 0.0;
     std::size_t count = 0;
@@ -85,10 +87,45 @@ public:
     ++popped_;
   }
 
+  // For tests: the number of valid pending events (at most one per disk), after checking the
+  // ring's bookkeeping (the count of listed entries, every chunk but a bucket's open one full,
+  // each entry in the bucket of its time); -1 if that is broken.
+  long long checkedPending() const {
+    std::size_t listed = 0;
+    for (std::size_t slot = 0; slot < table_.size(); ++slot) {
+      const Bucket& b = table_[slot];
+      if ((b.open < 0) != (b.fill == 0) || b.fill > kChunk)
+        return -1;
+      std::uint32_t fill = b.fill;
+      for (std::int32_t k = b.open; k >= 0; k = chunks_[static_cast<std::size_t>(k)].next, fill = kChunk)
+        for (std::uint32_t e = 0; e < fill; ++e) {
+          const std::int64_t bucket = bucketOf(chunks_[static_cast<std::size_t>(k)].items[e].event.t);
+          if (slotOf(bucket) != slot || bucket <= current_ || bucket >= current_ + static_cast<std::int64_t>(buckets_))
+            return -1;
+          ++listed;
+        }
+    }
+    if (listed != listed_)
+      return -1;
+    std::vector<char> seen(gen_.size(), 0);
+    long long pending = 0;
+    bool twice = false;
+    forEachValid([&](const Item& it) {
+      twice = twice || seen[it.disk];
+      seen[it.disk] = 1;
+      ++pending;
+    });
+    return twice ? -1 : pending;
+  }
+
+  // Turns and width changes so far (tests check that they ran).
+  std::uint64_t turns() const { return turns_; }
+  std::uint64_t rebuilds() const { return rebuilds_; }
+
 private:
   static constexpr double kInf = std::numeric_limits<double>::infinity();
   static constexpr std::uint32_t kChunk = 7; // events per chunk: 7 x 32 bytes + the link, 4 cache lines
-  static constexpr std::size_t kFullBuckets = 32768; // from this many disks, about kChunk events a bucket
+  static constexpr std::size_t kManyDisks = 32768; // from this many disks, kChunk times fewer buckets
 
   // The current bucket is used up: move on to the next one with events (out of line, so that
   // top() stays small enough to inline).
@@ -120,6 +157,7 @@ private:
         const std::uint64_t seen = popped_;
         popped_ = 0;
         turnStart_ = current_;
+        ++turns_;
         const bool crowded = seen > 8 * perBucket_ * buckets_, sparse = seen * 8 < buckets_;
         if (crowded || sparse) {
           rebuild(width_ * (crowded ? 0.25 : 4.0), static_cast<double>(current_) * width_);
@@ -184,6 +222,7 @@ private:
   }
 
   void rebuild(double width, double now) {
+    ++rebuilds_;
     std::vector<Item> all;
     forEachValid([&](const Item& it) { all.push_back(it); });
     width_ = width;
@@ -248,7 +287,7 @@ private:
   std::size_t buckets_ = 64, listed_ = 0, perBucket_ = 2;
   double width_ = 1.0;
   std::int64_t current_ = 0, turnStart_ = 0;
-  std::uint64_t popped_ = 0;
+  std::uint64_t popped_ = 0, turns_ = 0, rebuilds_ = 0;
   std::vector<std::uint32_t> gen_;
   // The ring: per bucket its open chunk (the one being filled, at the head of the bucket's
   // list of chunks; the others are full) and how many events that one holds.

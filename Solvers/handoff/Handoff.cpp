@@ -84,38 +84,70 @@ void merge(Piece& a, const Piece& b) {
 
 // The grouped ejecta of a thin or sparse curtain fill their cubes only in part: a cube with one
 // SPH particle would give a grain a fraction of the bed's size, and the smallest grain sets the
-// DEM's time step. So each piece lighter than `light` joins its nearest piece (centre to centre)
-// if that one lies within `reach`, the lightest first, until every piece within reach of
-// another is at least that heavy. O(n²) in the pieces (a curtain's few thousand at most).
-void mergeLightPieces(std::vector<Piece>& pieces, double light, double reach) {
+// DEM's time step. So each piece lighter than `light`, the lightest first, joins the nearest
+// piece (centre to centre) within `reach` that stays at most `heavy` with it; a piece with none
+// at its turn stays as it is. The search runs on a grid of cells `reach` wide (a piece that
+// moves, as merged centres do, is listed again in its new cell; the distance is always taken
+// from where it is now), so it costs about the number of pieces times their neighbours.
+void mergeLightPieces(std::vector<Piece>& pieces, double light, double heavy, double reach) {
   if (!(light > 0.0) || !(reach > 0.0) || pieces.size() < 2)
     return;
+  auto cellOf = [&](const Piece& q, long long c[3]) {
+    for (int a = 0; a < 3; ++a)
+      c[a] = static_cast<long long>(std::floor(q.x[a] / reach));
+  };
+  auto keyOf = [](long long a, long long b, long long c) {
+    return (a * 73856093LL) ^ (b * 19349663LL) ^ (c * 83492791LL);
+  };
+  std::unordered_map<long long, std::vector<std::size_t>> grid;
+  auto list = [&](std::size_t k) {
+    long long c[3];
+    cellOf(pieces[k], c);
+    grid[keyOf(c[0], c[1], c[2])].push_back(k);
+  };
   std::vector<char> alive(pieces.size(), 1);
   using Entry = std::pair<double, std::size_t>; // mass, piece
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> lightest;
-  for (std::size_t k = 0; k < pieces.size(); ++k)
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    list(k);
     if (pieces[k].m < light)
       lightest.push({pieces[k].m, k});
+  }
   while (!lightest.empty()) {
     const auto [m, k] = lightest.top();
     lightest.pop();
     if (!alive[k] || m != pieces[k].m)
       continue; // merged away, or grown since
+    // Nearest first, then the lower index: the same choice whatever the grid's order.
     std::size_t best = pieces.size();
     double bestD2 = reach * reach;
-    for (std::size_t j = 0; j < pieces.size(); ++j) {
-      if (j == k || !alive[j])
-        continue;
-      double d2 = 0.0;
-      for (int a = 0; a < 3; ++a)
-        d2 += (pieces[j].x[a] - pieces[k].x[a]) * (pieces[j].x[a] - pieces[k].x[a]);
-      if (d2 <= bestD2)
-        bestD2 = d2, best = j;
-    }
+    long long c[3];
+    cellOf(pieces[k], c);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto cell = grid.find(keyOf(c[0] + dx, c[1] + dy, c[2] + dz));
+          if (cell == grid.end())
+            continue;
+          for (std::size_t j : cell->second) {
+            if (j == k || !alive[j] || pieces[j].m + m > heavy)
+              continue;
+            double d2 = 0.0;
+            for (int a = 0; a < 3; ++a)
+              d2 += (pieces[j].x[a] - pieces[k].x[a]) * (pieces[j].x[a] - pieces[k].x[a]);
+            if (d2 < bestD2 || (d2 == bestD2 && j < best))
+              bestD2 = d2, best = j;
+          }
+        }
     if (best == pieces.size())
-      continue; // alone: it stays as light as it is
+      continue; // no piece within reach that can take it: it stays as light as it is
+    long long before[3], after[3];
+    cellOf(pieces[best], before);
     merge(pieces[best], pieces[k]);
     alive[k] = 0;
+    cellOf(pieces[best], after);
+    if (before[0] != after[0] || before[1] != after[1] || before[2] != after[2])
+      list(best);
     if (pieces[best].m < light)
       lightest.push({pieces[best].m, best});
   }
@@ -554,7 +586,7 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
       }
       pieces.push_back(q);
     }
-    mergeLightPieces(pieces, 0.5 * meanMass(bed), params.groupReach * edge);
+    mergeLightPieces(pieces, 0.5 * meanMass(bed), 2.0 * meanMass(bed), params.groupReach * edge);
   } else {
     for (std::size_t i : ejecta) {
       Piece q;

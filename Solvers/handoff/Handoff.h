@@ -20,8 +20,9 @@
 //    their SPH positions (or, grouped, one per cube of the bed's mean particle diameter, at the
 //    group's centre of mass with its momentum and its angular momentum about that centre as
 //    spin; a group lighter than half a mean bed grain then joins the nearest group within
-//    groupReach cube edges, so that a sparse curtain makes no grains much smaller than the
-//    bed's, which would set the DEM's time step), moved along their own velocity (which changes neither momentum nor
+//    groupReach cube edges that stays within two bed grains, so that a sparse curtain makes no
+//    grains much smaller than the bed's, which would set the DEM's time step), moved along
+//    their own velocity (which changes neither momentum nor
 //    angular momentum) to the nearest place, forward first, where they overlap nothing by more
 //    than 1 % of a radius and stay inside the container's walls; one with no such place keeps
 //    its position with a smaller radius (same mass and momentum) that fits, if one does, and

@@ -10,7 +10,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <set>
+#include <utility>
 #include <vector>
 
 using namespace craterkit;
@@ -357,30 +360,48 @@ TEST(HardDiskCrater, BadInputGivesClearErrors) {
   EXPECT_THROW(HardDiskSystem(overlapping, hp), InputError);
 }
 
-// The future-event queue against a brute-force minimum, through many turns of its ring, with
-// ties, events that disappear, bursts of close events and long gaps (which make it adapt).
-// 500 disks: about two events a bucket; 40,000: fuller buckets, several chunks each in a burst.
+// The future-event queue against an ordered set of the pending (time, disk) pairs, in phases
+// that make every part of it run: events soon after the present (the ring turns many times),
+// ties, events that disappear or lie far ahead (the overflow list and its refills); a phase
+// in which every new event lies far ahead (the ring empties and the queue jumps, then widens);
+// a new tune() in mid-run; bursts of events closer than a bucket's width (the ring narrows).
+// Every few thousand steps the queue's own bookkeeping is checked and its count of valid
+// events compared with the set's. 500 disks with as many buckets, 2,000 with seven times
+// fewer (several chunks to a bucket), and 40,000, for which the queue chooses the latter itself
+// (too many for the ring to turn often in a test).
 namespace {
-void checkQueueAgainstBruteForce(std::size_t n, int steps) {
+void checkQueueAgainstOrderedSet(std::size_t n, int steps, std::size_t perBucket, bool adapts) {
   Random rng(17);
   std::vector<double> times(n);
-  for (double& t : times)
-    t = rng.uniform(0.0, 1.0);
+  std::set<std::pair<double, std::size_t>> pending;
+  for (std::size_t i = 0; i < n; ++i) {
+    times[i] = rng.uniform(0.0, 1.0);
+    pending.insert({times[i], i});
+  }
   struct Timed {
     double t;
   };
   EventQueue<Timed> q;
-  q.reset(n, 0.0);
+  q.reset(n, 0.0, perBucket);
   for (std::size_t i = 0; i < n; ++i)
     q.update(i, Timed{times[i]});
   q.tune(0.0);
+  auto set = [&](std::size_t i, double t) {
+    if (times[i] < kInf)
+      pending.erase({times[i], i});
+    times[i] = t;
+    if (t < kInf)
+      pending.insert({t, i});
+    q.update(i, Timed{t});
+  };
+  const double dt = 50.0 / static_cast<double>(n); // a disk's next event, on average, in phases 0 and 2
   double now = 0.0;
   int checked = 0;
   for (int step = 0; step < steps; ++step) {
-    std::size_t expected = n;
-    for (std::size_t i = 0; i < n; ++i)
-      if (times[i] < kInf && (expected == n || times[i] < times[expected]))
-        expected = i;
+    const int phase = step < 4 * steps / 10 ? 0 : step < 5 * steps / 10 ? 1 : step < 6 * steps / 10 ? 2 : 3;
+    if (step == 5 * steps / 10)
+      q.tune(now);
+    const std::size_t expected = pending.empty() ? n : pending.begin()->second;
     const auto* top = q.top();
     const std::size_t got = top ? top->disk : n;
     ASSERT_EQ(got, expected) << "step " << step;
@@ -389,33 +410,45 @@ void checkQueueAgainstBruteForce(std::size_t n, int steps) {
     ASSERT_EQ(top->event.t, times[got]);
     q.pop();
     now = times[got];
+    pending.erase({now, got});
+    times[got] = kInf;
     // The disk's next event: usually soon, sometimes a tie, sometimes far away or none.
     const double u = rng.uniform();
-    double next = now + rng.uniform(0.0, 0.01);
+    double next = now + rng.uniform(0.0, 2.0 * dt);
     if (u < 0.05)
       next = now; // a tie with the current time
     else if (u < 0.07)
       next = kInf;
     else if (u < 0.08)
       next = now + rng.uniform(0.0, 1000.0);
-    else if (step > steps / 2)
-      next = now + rng.uniform(0.0, 1e-5); // a burst: the ring must narrow
-    times[got] = next;
-    q.update(got, Timed{next});
+    else if (phase == 1)
+      next = now + rng.uniform(50.0, 60.0); // all new events far ahead: the ring empties
+    else if (phase == 3)
+      next = now + rng.uniform(0.0, 1e-4 * dt); // a burst: the ring must narrow
+    set(got, next);
     // Another disk's event changes too (and disks without one get one back).
     const std::size_t other = static_cast<std::size_t>(rng.uniform() * n);
     const std::size_t third = static_cast<std::size_t>(rng.uniform() * n);
-    times[other] = now + rng.uniform(0.0, 0.02);
+    double t = phase == 1 ? now + rng.uniform(50.0, 60.0) : now + rng.uniform(0.0, 4.0 * dt);
     if (rng.uniform() < 0.2 && times[third] < kInf)
-      times[other] = times[third]; // an exact tie between two disks
-    q.update(other, Timed{times[other]});
+      t = times[third]; // an exact tie between two disks
+    set(other, t);
+    if (step % 4999 == 0)
+      ASSERT_EQ(q.checkedPending(), static_cast<long long>(pending.size())) << "step " << step;
     ++checked;
   }
   EXPECT_EQ(checked, steps);
+  std::printf("%zu disks: %llu turns of the ring, %llu width changes, now at t = %.4g\n", n,
+              static_cast<unsigned long long>(q.turns()), static_cast<unsigned long long>(q.rebuilds()), now);
+  if (adapts) {
+    EXPECT_GT(q.turns(), 10u);
+    EXPECT_GT(q.rebuilds(), 3u); // the two tune() calls, and the ring widening and narrowing
+  }
 }
 } // namespace
 
 TEST(EventQueue, AlwaysYieldsTheEarliestEventLowestIndexFirst) {
-  checkQueueAgainstBruteForce(500, 200000);
-  checkQueueAgainstBruteForce(40000, 20000);
+  checkQueueAgainstOrderedSet(500, 400000, 0, true);  // a bucket per disk
+  checkQueueAgainstOrderedSet(2000, 400000, 7, true); // seven disks a bucket: chunk chains
+  checkQueueAgainstOrderedSet(40000, 200000, 0, false); // the same, chosen for a large system
 }
