@@ -48,6 +48,11 @@ double weight(double r, double h) {
 
 Eigen::Vector3d vec(const std::vector<double>& a, std::size_t i) { return {a[3 * i], a[3 * i + 1], a[3 * i + 2]}; }
 
+// A hash key of integer cell coordinates (for sparse grids in unordered containers).
+long long keyOf(long long a, long long b, long long c) {
+  return (a * 73856093LL) ^ (b * 19349663LL) ^ (c * 83492791LL);
+}
+
 double meanMass(const ParticleSet& p) {
   double m = 0.0;
   for (double mi : p.mass)
@@ -95,9 +100,6 @@ void mergeLightPieces(std::vector<Piece>& pieces, double light, double heavy, do
   auto cellOf = [&](const Piece& q, long long c[3]) {
     for (int a = 0; a < 3; ++a)
       c[a] = static_cast<long long>(std::floor(q.x[a] / reach));
-  };
-  auto keyOf = [](long long a, long long b, long long c) {
-    return (a * 73856093LL) ^ (b * 19349663LL) ^ (c * 83492791LL);
   };
   std::unordered_map<long long, std::vector<std::size_t>> grid;
   auto list = [&](std::size_t k) {
@@ -607,9 +609,6 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   auto cellOf = [&](const double* x, long long c[3]) {
     for (int a = 0; a < 3; ++a)
       c[a] = static_cast<long long>(std::floor(x[a] / cell));
-  };
-  auto keyOf = [](long long a, long long b, long long c) {
-    return (a * 73856093LL) ^ (b * 19349663LL) ^ (c * 83492791LL);
   };
   auto key = [&](const double* x) {
     long long c[3];
