@@ -192,6 +192,8 @@ int vtkCraterKitImpactHandoff::RequestData(
   totals("SPHCurtain", r.sphCurtain);
   totals("SPHEscaped", r.sphEscaped);
   b::addField(fd, "EscapedCount", static_cast<double>(r.escapedCount));
+  totals("SPHLoneDropped", r.sphLoneDropped);
+  b::addField(fd, "LoneDroppedCount", static_cast<double>(r.loneDropped));
   totals("DEMMappedBeforeCorrection", r.demBefore);
   totals("DEMMapped", r.demMapped);
   totals("DEMEjecta", r.demEjecta);

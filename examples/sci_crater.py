@@ -304,6 +304,8 @@ def main(argv):
         f"below the surface: {below_z:.4g}), in the curtain above it {vec('SPHCurtainMomentum')[2]:.4g}; "
         f"{int(field_value(dem0, 'CurtainCount'))} SPH particles above the surface, of which "
         f"{int(field_value(dem0, 'EscapedCount'))} ({field_value(dem0, 'SPHEscapedMass'):.3g} kg) land outside the bowl; "
+        f"{int(field_value(dem0, 'LoneDroppedCount'))} lone curtain pieces lighter than half a grain "
+        f"({field_value(dem0, 'SPHLoneDroppedMass'):.3g} kg) dropped; "
         f"fastest DEM particle {vmax_dem:.3g} m/s")
 
     at_handoff = crater_measures(simple.CraterProfile(Input=hand, SurfaceFromInput=0, SurfaceHeight=surface))
@@ -413,6 +415,9 @@ def main(argv):
         "sph_curtain_momentum_kg_m_s": vec("SPHCurtainMomentum"),
         "sph_escaped": {"particles": int(field_value(dem0, "EscapedCount")), "mass_kg": field_value(dem0, "SPHEscapedMass"),
                         "momentum_kg_m_s": vec("SPHEscapedMomentum")},
+        "sph_lone_pieces_dropped": {"pieces": int(field_value(dem0, "LoneDroppedCount")),
+                                    "mass_kg": field_value(dem0, "SPHLoneDroppedMass"),
+                                    "momentum_kg_m_s": vec("SPHLoneDroppedMomentum")},
         "curtain_particles": int(field_value(dem0, "CurtainCount")),
         "sph_compact_angular_momentum": vec("SPHCompactAngularMomentum"),
         "dem_mapped_angular_momentum": vec("DEMMappedAngularMomentum"),

@@ -91,12 +91,15 @@ void merge(Piece& a, const Piece& b) {
 // SPH particle would give a grain a fraction of the bed's size, and the smallest grain sets the
 // DEM's time step. So each piece lighter than `light`, the lightest first, joins the nearest
 // piece (centre to centre) within `reach` that stays at most `heavy` with it; a piece with none
-// at its turn stays as it is. The search runs on a grid of cells `reach` wide (a piece that
+// at its turn stays as it is, unless `dropLone`: a piece still lighter than `light` at the end
+// (none within reach to join) is taken out and returned, so that it becomes no grain. The search runs on a grid of cells `reach` wide (a piece that
 // moves, as merged centres do, is listed again in its new cell; the distance is always taken
 // from where it is now), so it costs about the number of pieces times their neighbours.
-void mergeLightPieces(std::vector<Piece>& pieces, double light, double heavy, double reach) {
+std::vector<Piece> mergeLightPieces(std::vector<Piece>& pieces, double light, double heavy, double reach,
+                                    bool dropLone) {
+  std::vector<Piece> lone;
   if (!(light > 0.0) || !(reach > 0.0) || pieces.size() < 2)
-    return;
+    return lone;
   auto cellOf = [&](const Piece& q, long long c[3]) {
     for (int a = 0; a < 3; ++a)
       c[a] = static_cast<long long>(std::floor(q.x[a] / reach));
@@ -154,10 +157,28 @@ void mergeLightPieces(std::vector<Piece>& pieces, double light, double heavy, do
       lightest.push({pieces[best].m, best});
   }
   std::size_t w = 0;
-  for (std::size_t k = 0; k < pieces.size(); ++k)
-    if (alive[k])
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    if (!alive[k])
+      continue;
+    if (dropLone && pieces[k].m < light)
+      lone.push_back(pieces[k]);
+    else
       pieces[w++] = pieces[k];
+  }
   pieces.resize(w);
+  return lone;
+}
+
+HandoffTotals totalsOf(const std::vector<Piece>& pieces) {
+  HandoffTotals t;
+  for (const Piece& q : pieces) {
+    t.mass += q.m;
+    const Eigen::Vector3d x(q.x[0], q.x[1], q.x[2]), p = q.m * Eigen::Vector3d(q.v[0], q.v[1], q.v[2]);
+    const Eigen::Vector3d l = x.cross(p) + Eigen::Vector3d(q.L[0], q.L[1], q.L[2]);
+    for (int a = 0; a < 3; ++a)
+      t.momentum[a] += p(a), t.angularMomentum[a] += l(a);
+  }
+  return t;
 }
 
 } // namespace
@@ -588,7 +609,10 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
       }
       pieces.push_back(q);
     }
-    mergeLightPieces(pieces, 0.5 * meanMass(bed), 2.0 * meanMass(bed), params.groupReach * edge);
+    const std::vector<Piece> lone = mergeLightPieces(pieces, 0.5 * meanMass(bed), 2.0 * meanMass(bed),
+                                                     params.groupReach * edge, params.dropLoneLightPieces);
+    out.loneDropped = lone.size();
+    out.sphLoneDropped = totalsOf(lone);
   } else {
     for (std::size_t i : ejecta) {
       Piece q;

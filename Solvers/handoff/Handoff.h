@@ -21,7 +21,9 @@
 //    group's centre of mass with its momentum and its angular momentum about that centre as
 //    spin; a group lighter than half a mean bed grain then joins the nearest group within
 //    groupReach cube edges that stays within two bed grains, so that a sparse curtain makes no
-//    grains much smaller than the bed's, which would set the DEM's time step), moved along
+//    grains much smaller than the bed's, which would set the DEM's time step; a group still that
+//    light, with none within reach to join, becomes no grain and its totals are reported:
+//    sphLoneDropped), moved along
 //    their own velocity (which changes neither momentum nor
 //    angular momentum) to the nearest place, forward first, where they overlap nothing by more
 //    than 1 % of a radius and stay inside the container's walls; one with no such place keeps
@@ -71,6 +73,11 @@ struct HandoffParams {
   // Grouped: a cube's piece lighter than half a mean bed grain joins the nearest piece within
   // this many cube edges (0: never), so that a sparse curtain does not make small grains.
   double groupReach = 2.0;
+  // Grouped: a piece still lighter than half a mean bed grain after that (none within reach to
+  // join) becomes no particle; its totals are reported (sphLoneDropped). One such piece would
+  // set the DEM's time step for the whole bed (a 1e5-grain SCI bed at Ryugu's gravity: a piece
+  // of 1 % of a grain's mass, 4.5 times more steps). False: it stays as a small grain.
+  bool dropLoneLightPieces = true;
   bool dropEjecta = false;       // no particles for the ejecta (they escape): only their totals are reported
   // Compact SPH material above the target's surface (higher than one alpha radius over it: the
   // ejecta curtain of a late hand-off, slower than the limit) has no bed particle to lend its
@@ -103,11 +110,13 @@ struct HandoffResult {
   std::size_t compactCount = 0, ejectaCount = 0, bedRemoved = 0, bedMapped = 0;
   std::size_t curtainCount = 0;       // compact SPH particles above the surface (escaped ones included)
   std::size_t escapedCount = 0;       // curtain and kept ejecta that land outside the container
+  std::size_t loneDropped = 0;        // grouped pieces lighter than half a bed grain, none to join: no particle
   std::size_t ejectaShrunk = 0;       // ejecta with no free place on their path, made smaller to fit
   std::size_t bedEvicted = 0;         // bed particles whose place an ejecta particle took
   HandoffTotals sphCompact, sphEjecta, demMapped, demEjecta, demBefore; // demBefore: mapped set before correction
   HandoffTotals sphCurtain;           // the part of sphCompact above the surface (in demEjecta, not demMapped)
   HandoffTotals sphEscaped;           // curtain and kept ejecta landing outside (in neither)
+  HandoffTotals sphLoneDropped;       // lone light pieces (loneDropped): in none of the above
   double shapeVolume = 0.0;           // volume of the alpha shape's interior cells, m³
   std::vector<std::string> warnings;
   struct Timing {

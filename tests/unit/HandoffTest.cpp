@@ -309,8 +309,9 @@ TEST(Handoff, GroupedEjectaKeepMassMomentumAndAngularMomentum) {
 // of the bed's radius (the smallest sets the DEM's step); light groups join their nearest
 // neighbour within two cube edges that stays within two bed grains, so every grain but one
 // weighs between half a bed grain and two: the exception is a particle alone 0.4 m above the
-// rings, which stays as light as it is. Mass, momentum and angular momentum (spin included)
-// are those of the SPH curtain, either way, and the kinetic energy within 5 %.
+// rings, which becomes no grain (its totals reported as dropped), or, with
+// dropLoneLightPieces off, stays as light as it is. Mass, momentum and angular momentum (spin included)
+// are those of the SPH curtain (with the dropped piece's), every way, and the kinetic energy within 5 %.
 TEST(Handoff, GroupedSparseCurtainBecomesGrainsOfAtLeastHalfTheBedsMass) {
   SphSnapshot sph = lattice([](const double*, double* v) { v[0] = v[1] = v[2] = 0.0; });
   const double grain = kRho / (M_PI / 6.0) * 4.0 / 3.0 * M_PI * 0.025 * 0.025 * 0.025; // bed() grains
@@ -332,11 +333,14 @@ TEST(Handoff, GroupedSparseCurtainBecomesGrainsOfAtLeastHalfTheBedsMass) {
   for (std::size_t i = sph.size() - 401; i < sph.size(); ++i)
     for (int a = 0; a < 3; ++a)
       curtainEnergy += 0.5 * sph.mass[i] * sph.v[3 * i + a] * sph.v[3 * i + a];
-  for (double reach : {0.0, 2.0}) {
+  const double aloneEnergy = 0.5 * 0.3 * grain * (up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
+  for (const auto& [reach, dropLone] : {std::pair{0.0, true}, std::pair{2.0, false}, std::pair{2.0, true}}) {
     HandoffParams params;
     params.groupEjecta = params.dropEjecta = true;
     params.groupReach = reach;
+    params.dropLoneLightPieces = dropLone;
     const HandoffResult r = handoff(sph, bed(), hemisphere(), params);
+    const bool dropped = reach > 0.0 && dropLone;
     ASSERT_EQ(r.curtainCount, 401u);
     std::size_t grains = 0, light = 0;
     double rmin = INFINITY, mmax = 0.0, ke = 0.0, spin = 0.0;
@@ -352,24 +356,30 @@ TEST(Handoff, GroupedSparseCurtainBecomesGrainsOfAtLeastHalfTheBedsMass) {
           spin += 0.5 * 0.4 * m * rad * rad * r.particles.angularVelocity[3 * i + a] * r.particles.angularVelocity[3 * i + a];
         }
       }
-    std::printf("reach %.0f cube edges: %zu curtain grains, %zu lighter than half a bed grain, smallest radius "
+    std::printf("reach %.0f cube edges, lone light pieces %s: %zu curtain grains, %zu lighter than half a bed grain, smallest radius "
                 "%.4f m (bed 0.025 m), heaviest %.2f bed grains; kinetic energy %.4f J + spin %.4f J (SPH curtain "
-                "%.4f J)\n", reach, grains, light, rmin, mmax / grain, ke, spin, curtainEnergy);
+                "%.4f J)\n", reach, dropLone ? "dropped" : "kept", grains, light, rmin, mmax / grain, ke, spin, curtainEnergy);
     // Merging is inelastic, but the pieces' motion about their common centre becomes spin,
     // which can hold more energy than the merge took from their translation (+2.6 % here, where
     // neighbours' vertical speeds differ by up to 0.6 m/s).
-    EXPECT_NEAR(ke + spin, curtainEnergy, 0.05 * curtainEnergy);
+    EXPECT_NEAR(ke + spin + (dropped ? aloneEnergy : 0.0), curtainEnergy, 0.05 * curtainEnergy);
     if (reach > 0.0) {
-      EXPECT_EQ(light, 1u); // the lone particle
+      EXPECT_EQ(light, dropped ? 0u : 1u); // the lone particle: no grain, or a light one
+      EXPECT_EQ(r.loneDropped, dropped ? 1u : 0u);
       EXPECT_LE(mmax, 2.0 * grain * (1.0 + 1e-12)); // no grain grows past two bed grains
     } else {
       EXPECT_GT(light, 100u);
+      EXPECT_EQ(r.loneDropped, 0u);
     }
+    // What the grains carry and what the dropped lone piece carried add up to the curtain.
     const double scale = r.sphCurtain.mass * 0.5;
-    EXPECT_NEAR(r.demEjecta.mass, r.sphCurtain.mass, 1e-12 * r.sphCurtain.mass);
+    EXPECT_NEAR(r.sphLoneDropped.mass, dropped ? 0.3 * grain : 0.0, 1e-12 * r.sphCurtain.mass);
+    EXPECT_NEAR(r.demEjecta.mass + r.sphLoneDropped.mass, r.sphCurtain.mass, 1e-12 * r.sphCurtain.mass);
     for (int a = 0; a < 3; ++a) {
-      EXPECT_NEAR(r.demEjecta.momentum[a], r.sphCurtain.momentum[a], 1e-10 * scale);
-      EXPECT_NEAR(r.demEjecta.angularMomentum[a], r.sphCurtain.angularMomentum[a], 1e-10 * scale);
+      EXPECT_NEAR(r.sphLoneDropped.momentum[a], dropped ? 0.3 * grain * up[a] : 0.0, 1e-12 * scale);
+      EXPECT_NEAR(r.demEjecta.momentum[a] + r.sphLoneDropped.momentum[a], r.sphCurtain.momentum[a], 1e-10 * scale);
+      EXPECT_NEAR(r.demEjecta.angularMomentum[a] + r.sphLoneDropped.angularMomentum[a],
+                  r.sphCurtain.angularMomentum[a], 1e-10 * scale);
     }
   }
 }
