@@ -53,6 +53,12 @@ long long keyOf(long long a, long long b, long long c) {
   return (a * 73856093LL) ^ (b * 19349663LL) ^ (c * 83492791LL);
 }
 
+// The integer coordinates of the grid cell (cubes `cell` wide) that holds x.
+void cellOf(const double* x, double cell, long long c[3]) {
+  for (int a = 0; a < 3; ++a)
+    c[a] = static_cast<long long>(std::floor(x[a] / cell));
+}
+
 double meanMass(const ParticleSet& p) {
   double m = 0.0;
   for (double mi : p.mass)
@@ -92,22 +98,18 @@ void merge(Piece& a, const Piece& b) {
 // DEM's time step. So each piece lighter than `light`, the lightest first, joins the nearest
 // piece (centre to centre) within `reach` that stays at most `heavy` with it; a piece with none
 // at its turn stays as it is, unless `dropLone`: a piece still lighter than `light` at the end
-// (none within reach to join) is taken out and returned, so that it becomes no grain. The search runs on a grid of cells `reach` wide (a piece that
-// moves, as merged centres do, is listed again in its new cell; the distance is always taken
+// (none within reach to join) is taken out and returned, so that it becomes no grain. The
+// search runs on a grid of cells `reach` wide (a piece that moves, as merged centres do, is listed again in its new cell; the distance is always taken
 // from where it is now), so it costs about the number of pieces times their neighbours.
 std::vector<Piece> mergeLightPieces(std::vector<Piece>& pieces, double light, double heavy, double reach,
                                     bool dropLone) {
   std::vector<Piece> lone;
   if (!(light > 0.0) || !(reach > 0.0) || pieces.size() < 2)
     return lone;
-  auto cellOf = [&](const Piece& q, long long c[3]) {
-    for (int a = 0; a < 3; ++a)
-      c[a] = static_cast<long long>(std::floor(q.x[a] / reach));
-  };
   std::unordered_map<long long, std::vector<std::size_t>> grid;
   auto list = [&](std::size_t k) {
     long long c[3];
-    cellOf(pieces[k], c);
+    cellOf(pieces[k].x, reach, c);
     grid[keyOf(c[0], c[1], c[2])].push_back(k);
   };
   std::vector<char> alive(pieces.size(), 1);
@@ -127,7 +129,7 @@ std::vector<Piece> mergeLightPieces(std::vector<Piece>& pieces, double light, do
     std::size_t best = pieces.size();
     double bestD2 = reach * reach;
     long long c[3];
-    cellOf(pieces[k], c);
+    cellOf(pieces[k].x, reach, c);
     for (long long dx = -1; dx <= 1; ++dx)
       for (long long dy = -1; dy <= 1; ++dy)
         for (long long dz = -1; dz <= 1; ++dz) {
@@ -147,10 +149,10 @@ std::vector<Piece> mergeLightPieces(std::vector<Piece>& pieces, double light, do
     if (best == pieces.size())
       continue; // no piece within reach that can take it: it stays as light as it is
     long long before[3], after[3];
-    cellOf(pieces[best], before);
+    cellOf(pieces[best].x, reach, before);
     merge(pieces[best], pieces[k]);
     alive[k] = 0;
-    cellOf(pieces[best], after);
+    cellOf(pieces[best].x, reach, after);
     if (before[0] != after[0] || before[1] != after[1] || before[2] != after[2])
       list(best);
     if (pieces[best].m < light)
@@ -630,13 +632,9 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   const double cell = 2.0 * rmax;
   // Cells by integer coordinates: neighbours are found by offsetting the integers, never by
   // re-dividing shifted positions (which can round into the wrong cell).
-  auto cellOf = [&](const double* x, long long c[3]) {
-    for (int a = 0; a < 3; ++a)
-      c[a] = static_cast<long long>(std::floor(x[a] / cell));
-  };
   auto key = [&](const double* x) {
     long long c[3];
-    cellOf(x, c);
+    cellOf(x, cell, c);
     return keyOf(c[0], c[1], c[2]);
   };
   std::unordered_multimap<long long, std::size_t> grid;
@@ -647,7 +645,7 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   // the iterator to continue from (so that it may erase the entry).
   auto forNearby = [&](const double* x, auto&& f) {
     long long c[3];
-    cellOf(x, c);
+    cellOf(x, cell, c);
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dz = -1; dz <= 1; ++dz) {

@@ -23,8 +23,7 @@
 //    groupReach cube edges that stays within two bed grains, so that a sparse curtain makes no
 //    grains much smaller than the bed's, which would set the DEM's time step; a group still that
 //    light, with none within reach to join, becomes no grain and its totals are reported:
-//    sphLoneDropped), moved along
-//    their own velocity (which changes neither momentum nor
+//    sphLoneDropped), moved along their own velocity (which changes neither momentum nor
 //    angular momentum) to the nearest place, forward first, where they overlap nothing by more
 //    than 1 % of a radius and stay inside the container's walls; one with no such place keeps
 //    its position with a smaller radius (same mass and momentum) that fits, if one does, and
