@@ -12,8 +12,12 @@ friction angle 30 degrees, no cohesion) are the defaults, and every parameter is
 Every length is set from the pi-scaling diameter D of the run's own impact and every time from
 sqrt(D/g): the SPH target is 0.8 D in radius, the SPH stage switches to the late-stage scheme
 after 1 ms and runs until 0.63 sqrt(D/g), when the crater has mostly opened (the hand-off must
-come this late: a DEM bed handed the 1 ms state, where only a few grains move fast, makes no
-crater); the bed fills a bowl of radius 1.05 D; the DEM runs 1.5 sqrt(D/g) more. Material whose
+not come too early: a DEM bed handed the 1 ms state, where only a few grains move fast, makes no
+crater). At that late hand-off the crater is the SPH stage's and the DEM stage lets its walls
+settle, so the bed's packing changes little; handed off while the crater still grows
+(--handoff-time about 0.1 sqrt(D/g)), the DEM stage grows it and an HCP bed gives the smaller,
+shallower crater with the lower rim (benchmarks/README.md, "packing against the hand-off
+time"). The bed fills a bowl of radius 1.05 D; the DEM runs 1.5 sqrt(D/g) more. Material whose
 ballistic flight comes down outside the bowl leaves the domain at the hand-off, so the DEM
 stiffness is set by the grains that stay. Gravity decides what a run costs: the SPH target
 holds (0.8 D / impactor radius)^3 particles, and D grows as g^-0.17. The default fires the SCI
