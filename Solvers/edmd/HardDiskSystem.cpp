@@ -445,6 +445,13 @@ __attribute__((always_inline)) inline void HardDiskSystem::scanList(std::size_t 
 }
 
 template <bool Grav, bool PX, bool PY> void HardDiskSystem::scanBlock(std::size_t i, Event& best) const {
+  Block block;
+  gatherBlock<PX, PY>(i, block);
+  for (int c = 0; c < block.cells; ++c)
+    scanList<Grav, PX, PY>(i, block.first[c], best);
+}
+
+template <bool PX, bool PY> inline void HardDiskSystem::gatherBlock(std::size_t i, Block& block) const {
   // The 3x3 cells around i (an axis without periodicity reads the always empty cell beyond
   // the grid at its ends); their first disks' records are requested together, since most
   // cells hold zero or one disk and these are most of a prediction's loads.
@@ -456,18 +463,32 @@ template <bool Grav, bool PX, bool PY> void HardDiskSystem::scanBlock(std::size_
     const long ky = wrapCell<PY>(cy + d - 1, ny);
     row[d] = ky < 0 ? -1 : ky * nx;
   }
-  std::int32_t first[9];
   int cells = 0;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) {
       const bool inside = col[c] >= 0 && row[r] >= 0;
       const std::int32_t k = head_[static_cast<std::size_t>(inside ? row[r] + col[c] : none)];
       __builtin_prefetch(&h_[static_cast<std::size_t>(k < 0 ? 0 : k)]);
-      first[cells] = k;
+      block.first[cells] = k;
       cells += k >= 0;
     }
-  for (int c = 0; c < cells; ++c)
-    scanList<Grav, PX, PY>(i, first[c], best);
+  block.cells = cells;
+}
+
+template <bool Grav, bool PX, bool PY> void HardDiskSystem::predictPair(std::size_t i, std::size_t j) {
+  // Both disks of a collision: the two blocks' cells and first records are requested before
+  // either is scanned, so that their loads overlap.
+  Block bi, bj;
+  gatherBlock<PX, PY>(i, bi);
+  gatherBlock<PX, PY>(j, bj);
+  Event best{kInf, 0, EventType::None, 0};
+  for (int c = 0; c < bi.cells; ++c)
+    scanList<Grav, PX, PY>(i, bi.first[c], best);
+  finishPrediction(i, best);
+  best = Event{kInf, 0, EventType::None, 0};
+  for (int c = 0; c < bj.cells; ++c)
+    scanList<Grav, PX, PY>(j, bj.first[c], best);
+  finishPrediction(j, best);
 }
 
 template <bool Grav, bool PX, bool PY>
@@ -476,13 +497,18 @@ void HardDiskSystem::scanEdge(std::size_t i, std::uint32_t direction, Event& bes
   const long nx = static_cast<long>(nx_), ny = static_cast<long>(ny_);
   const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
   const long step = (direction % 2 == 0) ? -1 : 1;
+  std::int32_t first[3];
+  int cells = 0;
   for (long d = -1; d <= 1; ++d) {
     const long kx = wrapCell<PX>(direction < 2 ? cx + step : cx + d, nx);
     const long ky = wrapCell<PY>(direction < 2 ? cy + d : cy + step, ny);
-    if (kx < 0 || ky < 0)
-      continue;
-    scanList<Grav, PX, PY>(i, head_[static_cast<std::size_t>(ky * nx + kx)], best);
+    const std::int32_t k = kx < 0 || ky < 0 ? -1 : head_[static_cast<std::size_t>(ky * nx + kx)];
+    __builtin_prefetch(&h_[static_cast<std::size_t>(k < 0 ? 0 : k)]);
+    first[cells] = k;
+    cells += k >= 0;
   }
+  for (int c = 0; c < cells; ++c)
+    scanList<Grav, PX, PY>(i, first[c], best);
 }
 
 // The specialised scans for this box (gravity or not, periodic axes).
@@ -493,6 +519,7 @@ void HardDiskSystem::chooseScans() {
   case K:                                                                                                          \
     scanBlock_ = &HardDiskSystem::scanBlock<G, X, Y>;                                                              \
     scanEdge_ = &HardDiskSystem::scanEdge<G, X, Y>;                                                                \
+    predictPair_ = &HardDiskSystem::predictPair<G, X, Y>;                                                          \
     break;
     CK_SCANS(0, false, false, false)
     CK_SCANS(1, false, false, true)
@@ -516,6 +543,12 @@ void HardDiskSystem::predict(std::size_t i) {
         consider(i, j, best);
     });
   }
+  finishPrediction(i, best);
+}
+
+void HardDiskSystem::finishPrediction(std::size_t i, Event& best) {
+  // best holds i's pair events with the small disks near it: add the big disks, keep the
+  // pair part for the next crossing, add the cell and wall events, schedule the earliest.
   for (std::uint32_t b : bigs_)
     if (b != i)
       consider(i, b, best);
@@ -582,8 +615,12 @@ void HardDiskSystem::collide(std::size_t i, std::size_t j) {
     disturbed_[i] = disturbed_[j] = 1;
   if (log_)
     log_->push_back(EventRecord{time_, EventType::Pair, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)});
-  predict(i);
-  predict(j);
+  if (fastScan(i) && fastScan(j)) {
+    (this->*predictPair_)(i, j);
+  } else {
+    predict(i);
+    predict(j);
+  }
 }
 
 void HardDiskSystem::hitWall(std::size_t i, std::uint32_t wall) {
@@ -655,6 +692,17 @@ bool HardDiskSystem::step(double limit) {
     return false;
   const std::size_t i = top->disk;
   const Event ev = top->event;
+  // Everything this event reads first, requested at once: the disks' records and cells (the
+  // partner's record also decides whether the event is stale).
+  __builtin_prefetch(&h_[i]);
+  __builtin_prefetch(&cellOf_[i]);
+  if (ev.type == EventType::Pair) {
+    __builtin_prefetch(&h_[ev.partner]);
+    __builtin_prefetch(&cellOf_[ev.partner]);
+  } else if (ev.type == EventType::Cell) {
+    __builtin_prefetch(&pairBest_[i]);
+    __builtin_prefetch(&prevInCell_[i]);
+  }
   queue_.pop();
   time_ = std::max(time_, ev.t);
   switch (ev.type) {

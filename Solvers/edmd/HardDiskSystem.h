@@ -122,6 +122,14 @@ private:
   bool fastScan(std::size_t i) const { return gridFast_ && !isBig_[i]; }
   template <bool Grav, bool PX, bool PY> void scanList(std::size_t i, std::int32_t k, Event& best) const;
   template <bool Grav, bool PX, bool PY> void scanBlock(std::size_t i, Event& best) const;
+  struct Block {
+    std::int32_t first[9]; // first disk of each non-empty cell of the 3x3 block
+    int cells;
+  };
+  template <bool PX, bool PY> void gatherBlock(std::size_t i, Block& block) const;
+  template <bool Grav, bool PX, bool PY> void predictPair(std::size_t i, std::size_t j);
+  void (HardDiskSystem::*predictPair_)(std::size_t, std::size_t) = nullptr;
+  void finishPrediction(std::size_t i, Event& best);
   template <bool Grav, bool PX, bool PY> void scanEdge(std::size_t i, std::uint32_t direction, Event& best) const;
   void chooseScans();
   void (HardDiskSystem::*scanBlock_)(std::size_t, Event&) const = nullptr;
