@@ -92,18 +92,20 @@ def planar_and_energy(path):
 
 
 def dynamo(dynarun, n, eta, work):
-    """Collisions per second of dynarun on the gas, after a 2 N-collision equilibration."""
+    """Collisions per second of dynarun on the gas, after a 2 N-collision equilibration.
+    dynarun runs in the work folder, where its own output file (output.xml.bz2) lands."""
+    work = os.path.abspath(work)
     start, eq = os.path.join(work, f"start_{n}.xml"), os.path.join(work, f"eq_{n}.xml")
     if not os.path.exists(eq):
         write_dynamo_config(start, n, eta)
-        subprocess.run([dynarun, start, "-c", str(2 * n), "-o", eq], check=True, capture_output=True)
+        subprocess.run([dynarun, start, "-c", str(2 * n), "-o", eq], check=True, capture_output=True, cwd=work)
     timed = max(10 * n, 2_000_000)
     end, end1 = os.path.join(work, f"end_{n}.xml"), os.path.join(work, f"end1_{n}.xml")
     t0 = time.perf_counter()
-    subprocess.run(one_core([dynarun, "-E", eq, "-c", "1", "-o", end1]), check=True, capture_output=True)
+    subprocess.run(one_core([dynarun, "-E", eq, "-c", "1", "-o", end1]), check=True, capture_output=True, cwd=work)
     setup = time.perf_counter() - t0
     t0 = time.perf_counter()
-    subprocess.run(one_core([dynarun, "-E", eq, "-c", str(timed), "-o", end]), check=True, capture_output=True)
+    subprocess.run(one_core([dynarun, "-E", eq, "-c", str(timed), "-o", end]), check=True, capture_output=True, cwd=work)
     seconds = time.perf_counter() - t0 - setup
     z, vz, ke = planar_and_energy(end)
     _, _, ke0 = planar_and_energy(eq)
