@@ -72,6 +72,42 @@ namespace {
 constexpr std::uint32_t kNoShift = 13; // image code (sx+1) + 3 (sy+1) + 9 (sz+1) of the particle itself
 constexpr int kMaxLevels = 16;         // levels of h in the neighbour grids (√2 apart)
 
+// Loops cloned for x86-64-v4 (AVX-512) and chosen at run time where the processor has it;
+// elsewhere the generic code runs. The two differ only by rounding.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
+#define CK_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v4", "default")))
+#else
+#define CK_SIMD_CLONES
+#endif
+
+// A run of candidate partners of one particle, in the neighbour grid's sorted order.
+struct CandidateRange {
+  const double *x, *y, *z, *h, *margin;
+  const std::uint32_t* entry; // index * 32 + image code
+  std::uint32_t count;
+};
+
+// Which candidates particle a (at xa, with h and margin ha, ma; `self` its own entry) lists:
+// those within grow max(h_a, h_b) plus the larger margin. keep[k] is 1 for those; returns true
+// if one not listed lies within twice the margin (a near miss). One vector pass, no branches.
+CK_SIMD_CLONES bool listCandidates(const CandidateRange& c, const double* xa, double ha, double ma, double grow,
+                                   std::uint32_t self, std::uint8_t* keep) {
+  const double x0 = xa[0], x1 = xa[1], x2 = xa[2];
+  int nearMiss = 0;
+#pragma omp simd reduction(| : nearMiss)
+  for (std::uint32_t k = 0; k < c.count; ++k) {
+    const double pairMu = std::max(ma, c.margin[k]);
+    const double cut = grow * std::max(ha, c.h[k]) + pairMu;
+    const double dx = x0 - c.x[k], dy = x1 - c.y[k], dz = x2 - c.z[k];
+    const double r2 = dx * dx + dy * dy + dz * dz;
+    const bool other = c.entry[k] != self;
+    const bool listed = (r2 < cut * cut) & other;
+    keep[k] = listed;
+    nearMiss |= !listed & other & (r2 < (cut + pairMu) * (cut + pairMu));
+  }
+  return nearMiss != 0;
+}
+
 // Derived constants of a material's strength and porosity model.
 struct Rheology {
   enum Kind { Fluid, VonMises, DruckerPrager } kind = Fluid;
@@ -445,7 +481,7 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
   for (int l = 0; l < levels; ++l)
     std::sort(order.begin() + static_cast<std::ptrdiff_t>(levelSize[static_cast<std::size_t>(l)]),
               order.begin() + static_cast<std::ptrdiff_t>(levelSize[static_cast<std::size_t>(l) + 1]));
-  std::vector<double> spos(3 * m), sh(m), smu(m); // positions, h and margins in (level, cell) order
+  std::vector<double> spx(m), spy(m), spz(m), sh(m), smu(m); // positions, h and margins in (level, cell) order
   std::vector<std::uint32_t> sid(m);
   std::vector<std::int64_t> cellKey;                                        // distinct cells, ascending per level
   std::vector<std::uint32_t> cellStart;                                     // their first entry in the sorted arrays, plus the end
@@ -453,8 +489,7 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
   for (int l = 0; l < levels; ++l) {
     for (std::size_t r = levelSize[static_cast<std::size_t>(l)]; r < levelSize[static_cast<std::size_t>(l) + 1]; ++r) {
       const std::uint32_t q = order[r].second;
-      for (int k = 0; k < 3; ++k)
-        spos[3 * r + k] = pos[3 * q + k];
+      spx[r] = pos[3 * q], spy[r] = pos[3 * q + 1], spz[r] = pos[3 * q + 2];
       sid[r] = id[q];
       sh[r] = s.h[id[q] / 32];
       smu[r] = mu[id[q] / 32];
@@ -496,6 +531,7 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
   struct Handed {
     std::uint32_t to, entry;
   };
+  std::vector<std::vector<std::uint8_t>> keepOf(static_cast<std::size_t>(omp_get_max_threads())); // per thread: which candidates are listed
   auto visit = [&](std::size_t a, std::vector<std::uint32_t>& out, std::vector<Handed>& handed) {
     bool nearMiss = false;
     const double* xa = &s.x[3 * a];
@@ -505,25 +541,29 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
     for (int l = 0; l <= la; ++l) {
       const double R = grow * std::max(ha, levelH[static_cast<std::size_t>(l)]) + std::max(ma, levelMu[static_cast<std::size_t>(l)]);
       forCells(xa, R, l, [&](std::uint32_t begin, std::uint32_t end) {
-        // Branch-free: every candidate is written, the list advances past those in range.
+        // The candidates' tests in one vector pass, then the list advances past those in
+        // range (branch-free: every candidate is written).
+        const std::uint32_t count = end - begin;
+        std::vector<std::uint8_t>& keep = keepOf[omp_get_thread_num()];
+        if (keep.size() < count)
+          keep.resize(count);
+        const CandidateRange cr{spx.data() + begin, spy.data() + begin, spz.data() + begin, sh.data() + begin,
+                                smu.data() + begin, sid.data() + begin, count};
+        nearMiss |= listCandidates(cr, xa, ha, ma, grow, self, keep.data());
         std::size_t at = out.size();
-        out.resize(at + (end - begin));
+        out.resize(at + count);
         std::uint32_t* o = out.data();
-        for (std::uint32_t r = begin; r < end; ++r) {
-          const std::uint32_t e = sid[r];
-          const double pairMu = std::max(ma, smu[r]);
-          const double cut = grow * std::max(ha, sh[r]) + pairMu;
-          const double* xb = &spos[3 * r];
-          const double r2 = (xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
-                            (xa[2] - xb[2]) * (xa[2] - xb[2]);
-          const bool listed = (r2 < cut * cut) & (e != self);
-          o[at] = e;
-          at += listed;
-          nearMiss |= !listed & (e != self) & (r2 < (cut + pairMu) * (cut + pairMu));
-          if (l < la && listed) // b's image at the opposite shift is near a
-            handed.push_back({e / 32, static_cast<std::uint32_t>(a * 32 + (26 - e % 32))});
+        for (std::uint32_t k = 0; k < count; ++k) {
+          o[at] = sid[begin + k];
+          at += keep[k];
         }
         out.resize(at);
+        if (l < la) // b's image at the opposite shift is near a
+          for (std::uint32_t k = 0; k < count; ++k)
+            if (keep[k]) {
+              const std::uint32_t e = sid[begin + k];
+              handed.push_back({e / 32, static_cast<std::uint32_t>(a * 32 + (26 - e % 32))});
+            }
       });
     }
     return nearMiss;
@@ -558,9 +598,8 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
           const std::uint32_t e = sid[r];
           if (e / 32 == a && e % 32 == kNoShift)
             continue;
-          const double* xb = &spos[3 * r];
-          const double d = std::sqrt((xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
-                                     (xa[2] - xb[2]) * (xa[2] - xb[2]));
+          const double d = std::sqrt((xa[0] - spx[r]) * (xa[0] - spx[r]) + (xa[1] - spy[r]) * (xa[1] - spy[r]) +
+                                     (xa[2] - spz[r]) * (xa[2] - spz[r]));
           const double pairRange = grow * std::max(ha, sh[r]);
           if (d >= pairRange + std::max(ma, smu[r])) // listed ones are not spare
             spare = std::min(spare, d - pairRange);
@@ -824,13 +863,8 @@ struct PairConstants {
 // vector registers hold the loop's 17 sums and temporaries, so the pair loop runs eight pairs
 // wide (27 % less time for the SCI-like run here; AVX2, with 16 registers, spills and gains
 // nothing). Elsewhere the generic code runs. The two differ only by rounding.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
-#define CK_PAIR_CLONES __attribute__((target_clones("arch=x86-64-v4", "default")))
-#else
-#define CK_PAIR_CLONES
-#endif
 template <class K, bool Xsph>
-CK_PAIR_CLONES PairSums
+CK_SIMD_CLONES PairSums
 pairSums(const Packed* Pp, const Packed& A, const std::uint32_t* entries, std::uint32_t count, Scratch& w,
          const PairConstants& pc) {
   // Pass 1: the listed neighbours inside the pair's support, with their separations.
