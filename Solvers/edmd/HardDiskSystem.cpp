@@ -444,11 +444,17 @@ __attribute__((always_inline)) inline void HardDiskSystem::scanList(std::size_t 
   }
 }
 
+// The cell lists that start at first[0 .. cells-1], one after the other.
+template <bool Grav, bool PX, bool PY>
+inline void HardDiskSystem::scanLists(std::size_t i, const std::int32_t* first, int cells, Event& best) const {
+  for (int c = 0; c < cells; ++c)
+    scanList<Grav, PX, PY>(i, first[c], best);
+}
+
 template <bool Grav, bool PX, bool PY> void HardDiskSystem::scanBlock(std::size_t i, Event& best) const {
   Block block;
   gatherBlock<PX, PY>(i, block);
-  for (int c = 0; c < block.cells; ++c)
-    scanList<Grav, PX, PY>(i, block.first[c], best);
+  scanLists<Grav, PX, PY>(i, block.first, block.cells, best);
 }
 
 template <bool PX, bool PY> inline void HardDiskSystem::gatherBlock(std::size_t i, Block& block) const {
@@ -482,12 +488,10 @@ template <bool Grav, bool PX, bool PY> void HardDiskSystem::predictPair(std::siz
   gatherBlock<PX, PY>(i, bi);
   gatherBlock<PX, PY>(j, bj);
   Event best{kInf, 0, EventType::None, 0};
-  for (int c = 0; c < bi.cells; ++c)
-    scanList<Grav, PX, PY>(i, bi.first[c], best);
+  scanLists<Grav, PX, PY>(i, bi.first, bi.cells, best);
   finishPrediction(i, best);
   best = Event{kInf, 0, EventType::None, 0};
-  for (int c = 0; c < bj.cells; ++c)
-    scanList<Grav, PX, PY>(j, bj.first[c], best);
+  scanLists<Grav, PX, PY>(j, bj.first, bj.cells, best);
   finishPrediction(j, best);
 }
 
@@ -507,8 +511,7 @@ void HardDiskSystem::scanEdge(std::size_t i, std::uint32_t direction, Event& bes
     first[cells] = k;
     cells += k >= 0;
   }
-  for (int c = 0; c < cells; ++c)
-    scanList<Grav, PX, PY>(i, first[c], best);
+  scanLists<Grav, PX, PY>(i, first, cells, best);
 }
 
 // The specialised scans for this box (gravity or not, periodic axes).
@@ -547,11 +550,16 @@ void HardDiskSystem::predict(std::size_t i) {
 }
 
 void HardDiskSystem::finishPrediction(std::size_t i, Event& best) {
-  // best holds i's pair events with the small disks near it: add the big disks, keep the
-  // pair part for the next crossing, add the cell and wall events, schedule the earliest.
+  // best holds i's pair events with the small disks near it: add the big disks.
   for (std::uint32_t b : bigs_)
     if (b != i)
       consider(i, b, best);
+  scheduleNext(i, best);
+}
+
+void HardDiskSystem::scheduleNext(std::size_t i, Event& best) {
+  // best is i's best pair event: keep it for the next crossing, add the cell and wall events,
+  // schedule the earliest.
   pairBest_[i] = best;
   cellEvent(i, best);
   wallEvent(i, best);
@@ -568,10 +576,7 @@ void HardDiskSystem::predictAfterCrossing(std::size_t i, std::uint32_t direction
     return;
   }
   (this->*scanEdge_)(i, direction, best);
-  pairBest_[i] = best;
-  cellEvent(i, best);
-  wallEvent(i, best);
-  schedule(i, best);
+  scheduleNext(i, best);
 }
 
 void HardDiskSystem::predictAll() {

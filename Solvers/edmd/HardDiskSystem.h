@@ -130,6 +130,9 @@ private:
   template <bool Grav, bool PX, bool PY> void predictPair(std::size_t i, std::size_t j);
   void (HardDiskSystem::*predictPair_)(std::size_t, std::size_t) = nullptr;
   void finishPrediction(std::size_t i, Event& best);
+  void scheduleNext(std::size_t i, Event& best);
+  template <bool Grav, bool PX, bool PY>
+  void scanLists(std::size_t i, const std::int32_t* first, int cells, Event& best) const;
   template <bool Grav, bool PX, bool PY> void scanEdge(std::size_t i, std::uint32_t direction, Event& best) const;
   void chooseScans();
   void (HardDiskSystem::*scanBlock_)(std::size_t, Event&) const = nullptr;

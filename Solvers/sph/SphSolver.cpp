@@ -525,13 +525,13 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
           f(cellStart[static_cast<std::size_t>(it - cellKey.begin())], cellStart[static_cast<std::size_t>(stop - cellKey.begin())]);
       }
   };
-  // Lists a's neighbours in its own and the coarser levels (the pairs with coarser ones also
-  // into `handed`, as entries of the partner's list); true if an unlisted particle came within
-  // twice the margin.
   struct Handed {
     std::uint32_t to, entry;
   };
   std::vector<std::vector<std::uint8_t>> keepOf(static_cast<std::size_t>(omp_get_max_threads())); // per thread: which candidates are listed
+  // Lists a's neighbours in its own and the coarser levels (the pairs with coarser ones also
+  // into `handed`, as entries of the partner's list); true if an unlisted particle came within
+  // twice the margin.
   auto visit = [&](std::size_t a, std::vector<std::uint32_t>& out, std::vector<Handed>& handed) {
     bool nearMiss = false;
     const double* xa = &s.x[3 * a];
