@@ -14,26 +14,20 @@
 
 vtkStandardNewMacro(vtkCraterKitCraterProfile);
 
-vtkCraterKitCraterProfile::vtkCraterKitCraterProfile()
-{
-  this->SetNumberOfOutputPorts(2);
-}
+vtkCraterKitCraterProfile::vtkCraterKitCraterProfile() { this->SetNumberOfOutputPorts(2); }
 
-int vtkCraterKitCraterProfile::FillInputPortInformation(int, vtkInformation* info)
-{
+int vtkCraterKitCraterProfile::FillInputPortInformation(int, vtkInformation* info) {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
   return 1;
 }
 
-int vtkCraterKitCraterProfile::FillOutputPortInformation(int port, vtkInformation* info)
-{
+int vtkCraterKitCraterProfile::FillOutputPortInformation(int port, vtkInformation* info) {
   info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkTable" : "vtkPolyData");
   return 1;
 }
 
-int vtkCraterKitCraterProfile::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
+int vtkCraterKitCraterProfile::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+                                           vtkInformationVector* outputVector) {
   using namespace craterkit;
   namespace b = craterkit::bridge;
   vtkPointSet* in = vtkPointSet::GetData(inputVector[0], 0);
@@ -48,18 +42,18 @@ int vtkCraterKitCraterProfile::RequestData(
     vtkDataArray* radius = in->GetPointData()->GetArray("Radius");
     vtkDataArray* h = in->GetPointData()->GetArray("SmoothingLength");
     if (!radius && !h)
-      throw InputError("CraterProfile: the input needs a Radius (DEM) or SmoothingLength (SPH) point array");
+      throw InputError(
+          "CraterProfile: the input needs a Radius (DEM) or SmoothingLength (SPH) point array");
     std::vector<double> x(3 * n), rad(n);
-    for (vtkIdType i = 0; i < n; ++i)
-    {
+    for (vtkIdType i = 0; i < n; ++i) {
       in->GetPoint(i, &x[3 * i]);
       rad[i] = radius ? radius->GetComponent(i, 0) : h->GetComponent(i, 0) / 5.0;
     }
     p.axis[0] = this->ImpactAxis[0];
     p.axis[1] = this->ImpactAxis[1];
     p.surfaceHeight = this->SurfaceFromInput
-      ? b::fieldScalar(in->GetFieldData(), "SurfaceHeight", this->SurfaceHeight)
-      : this->SurfaceHeight;
+                          ? b::fieldScalar(in->GetFieldData(), "SurfaceHeight", this->SurfaceHeight)
+                          : this->SurfaceHeight;
     p.maxRadius = this->MaxRadius;
     p.radialBins = this->RadialBins;
     p.azimuthalBins = this->AzimuthalBins;
@@ -81,10 +75,10 @@ int vtkCraterKitCraterProfile::RequestData(
   b::setVertices(section, xyz);
   section->GetPointData()->CopyAllocate(in->GetPointData(), static_cast<vtkIdType>(r.slab.size()));
   for (std::size_t k = 0; k < r.slab.size(); ++k)
-    section->GetPointData()->CopyData(in->GetPointData(), static_cast<vtkIdType>(r.slab[k]), static_cast<vtkIdType>(k));
+    section->GetPointData()->CopyData(in->GetPointData(), static_cast<vtkIdType>(r.slab[k]),
+                                      static_cast<vtkIdType>(k));
 
-  for (vtkFieldData* fd : { table->GetFieldData(), section->GetFieldData() })
-  {
+  for (vtkFieldData* fd : {table->GetFieldData(), section->GetFieldData()}) {
     fd->ShallowCopy(in->GetFieldData());
     auto put = [&](const char* suffix, const CraterMeasures& m) {
       const std::string s = suffix;
@@ -103,17 +97,19 @@ int vtkCraterKitCraterProfile::RequestData(
     b::addField(fd, "ImpactAxis", this->ImpactAxis, 2);
   }
   if (!r.all.found && r.all.depth > 0.0)
-    vtkWarningMacro(<< "no crater diameter: the surface dips " << r.all.depth << " m below SurfaceHeight ("
-                    << p.surfaceHeight << " m) but does not rise back to it within the profile (the "
-                    "surface around the pit lies below the original level, or the crater is wider than "
-                    "the particles reach)");
+    vtkWarningMacro(
+        << "no crater diameter: the surface dips " << r.all.depth << " m below SurfaceHeight ("
+        << p.surfaceHeight
+        << " m) but does not rise back to it within the profile (the "
+           "surface around the pit lies below the original level, or the crater is wider than "
+           "the particles reach)");
   else if (!r.all.found)
-    vtkWarningMacro(<< "no crater: the surface never dips below SurfaceHeight (" << p.surfaceHeight << " m)");
+    vtkWarningMacro(<< "no crater: the surface never dips below SurfaceHeight (" << p.surfaceHeight
+                    << " m)");
   return 1;
 }
 
-void vtkCraterKitCraterProfile::PrintSelf(ostream& os, vtkIndent indent)
-{
+void vtkCraterKitCraterProfile::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SurfaceFromInput: " << this->SurfaceFromInput << "\n";
   os << indent << "SurfaceHeight: " << this->SurfaceHeight << "\n";

@@ -17,8 +17,7 @@
 #include "CraterKitFiltersModule.h"
 #include <vtkPolyDataAlgorithm.h>
 
-class CRATERKITFILTERS_EXPORT vtkCraterKitCraterProfile : public vtkPolyDataAlgorithm
-{
+class CRATERKITFILTERS_EXPORT vtkCraterKitCraterProfile : public vtkPolyDataAlgorithm {
 public:
   static vtkCraterKitCraterProfile* New();
   vtkTypeMacro(vtkCraterKitCraterProfile, vtkPolyDataAlgorithm);
@@ -54,7 +53,7 @@ private:
 
   int SurfaceFromInput = 1;
   double SurfaceHeight = 0.0;
-  double ImpactAxis[2] = { 0.0, 0.0 };
+  double ImpactAxis[2] = {0.0, 0.0};
   double MaxRadius = 0.0;
   int RadialBins = 0;
   int AzimuthalBins = 16;

@@ -20,9 +20,9 @@ vtkStandardNewMacro(vtkCraterKitDEMIntegrator);
 vtkCraterKitDEMIntegrator::vtkCraterKitDEMIntegrator() = default;
 vtkCraterKitDEMIntegrator::~vtkCraterKitDEMIntegrator() = default;
 
-int vtkCraterKitDEMIntegrator::RequestInformation(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
+int vtkCraterKitDEMIntegrator::RequestInformation(vtkInformation*,
+                                                  vtkInformationVector** inputVector,
+                                                  vtkInformationVector* outputVector) {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   // The start time comes from the input's data if it carries one; otherwise 0.
   double start = 0.0;
@@ -30,32 +30,30 @@ int vtkCraterKitDEMIntegrator::RequestInformation(
   if (inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
     start = inInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS())[0];
   const std::vector<double> times =
-    craterkit::bridge::outputTimes(start, this->EndTime, this->OutputInterval);
+      craterkit::bridge::outputTimes(start, this->EndTime, this->OutputInterval);
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
-    static_cast<int>(times.size()));
-  const double range[2] = { times.front(), times.back() };
+               static_cast<int>(times.size()));
+  const double range[2] = {times.front(), times.back()};
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
   return 1;
 }
 
-void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input)
-{
+void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input) {
   using namespace craterkit;
   vtkFieldData* fd = input->GetFieldData();
   ParticleSet particles = bridge::fromPolyData(input);
   const double start = bridge::fieldScalar(fd, "Time", 0.0);
 
-  double zmin = VTK_DOUBLE_MAX, top = -VTK_DOUBLE_MAX, rmin = VTK_DOUBLE_MAX, rhoMin = VTK_DOUBLE_MAX;
-  for (std::size_t i = 0; i < particles.size(); ++i)
-  {
+  double zmin = VTK_DOUBLE_MAX, top = -VTK_DOUBLE_MAX, rmin = VTK_DOUBLE_MAX,
+         rhoMin = VTK_DOUBLE_MAX;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
     zmin = std::min(zmin, particles.position[3 * i + 2] - particles.radius[i]);
     top = std::max(top, particles.position[3 * i + 2] + particles.radius[i]);
     rmin = std::min(rmin, particles.radius[i]);
     rhoMin = std::min(rhoMin, particles.density[i]);
   }
   double vmax = this->MaxExpectedSpeed;
-  if (this->AddImpactor)
-  {
+  if (this->AddImpactor) {
     ImpactorParams imp;
     imp.radius = this->ImpactorRadius;
     imp.density = this->ImpactorDensity;
@@ -89,77 +87,75 @@ void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input)
   std::copy(this->PointMassCentre, this->PointMassCentre + 3, g.centre.begin());
   double gmag = 0.0;
   if (g.type == Gravity::Type::Uniform)
-    gmag = std::sqrt(g.vector[0] * g.vector[0] + g.vector[1] * g.vector[1] + g.vector[2] * g.vector[2]);
-  else if (g.type == Gravity::Type::PointMass)
-  {
+    gmag = std::sqrt(g.vector[0] * g.vector[0] + g.vector[1] * g.vector[1] +
+                     g.vector[2] * g.vector[2]);
+  else if (g.type == Gravity::Type::PointMass) {
     const double d = std::hypot(g.centre[0], g.centre[1], g.centre[2] - top);
     gmag = d > 0.0 ? g.GM / (d * d) : 0.0;
   }
 
   // Stiffness and time step: given, or proposed from the largest expected speed, the
   // lithostatic load and the allowed overlap (Schwartz et al. 2012, PHYSICS.md §1.6).
-  const StiffnessProposal proposal = proposeStiffness(rmin, rhoMin, vmax, this->MaxOverlap, gmag,
-    std::max(top - zmin, rmin), this->StepsPerCollision);
+  const StiffnessProposal proposal =
+      proposeStiffness(rmin, rhoMin, vmax, this->MaxOverlap, gmag, std::max(top - zmin, rmin),
+                       this->StepsPerCollision);
   c.kN = this->NormalStiffness > 0.0 ? this->NormalStiffness : proposal.kN;
   if (this->TimeStep > 0.0)
     p.dt = this->TimeStep;
-  else
-  {
+  else {
     const double mmin = rhoMin * 4.0 / 3.0 * M_PI * rmin * rmin * rmin;
     p.dt = M_PI * std::sqrt(0.5 * mmin / c.kN) / this->StepsPerCollision;
   }
 
   craterkit::Container container;
-  switch (this->Container)
-  {
-    case FROM_INPUT:
-    {
-      const std::string type = bridge::fieldString(fd, "ContainerType");
-      if (type == "Box" || type == "Bowl")
-      {
-        container.type = type == "Box" ? craterkit::Container::Type::Box : craterkit::Container::Type::Bowl;
-        container.bowlRadius = bridge::fieldScalar(fd, "ContainerRadius", this->ContainerRadius);
-        vtkDataArray* box = fd->GetArray("BoxSize");
-        for (int k = 0; k < 3; ++k)
-          container.boxSize[k] = box && box->GetNumberOfComponents() == 3 ? box->GetComponent(0, k)
-                                                                         : this->BoxSize[k];
-        p.walls = containerWalls(container);
-      }
-      break;
-    }
-    case BOX:
-    case BOWL:
-      container.type = this->Container == BOX ? craterkit::Container::Type::Box : craterkit::Container::Type::Bowl;
-      container.bowlRadius = this->ContainerRadius;
-      container.boxSize = { this->BoxSize[0], this->BoxSize[1], this->BoxSize[2] };
+  switch (this->Container) {
+  case FROM_INPUT: {
+    const std::string type = bridge::fieldString(fd, "ContainerType");
+    if (type == "Box" || type == "Bowl") {
+      container.type =
+          type == "Box" ? craterkit::Container::Type::Box : craterkit::Container::Type::Bowl;
+      container.bowlRadius = bridge::fieldScalar(fd, "ContainerRadius", this->ContainerRadius);
+      vtkDataArray* box = fd->GetArray("BoxSize");
+      for (int k = 0; k < 3; ++k)
+        container.boxSize[k] =
+            box && box->GetNumberOfComponents() == 3 ? box->GetComponent(0, k) : this->BoxSize[k];
       p.walls = containerWalls(container);
-      break;
-    case CYLINDER:
-      p.walls.push_back(Wall::cylinder({ 0, 0, 0 }, { 0, 0, 1 }, this->ContainerRadius));
-      p.walls.push_back(Wall::plane({ 0, 0, -this->BoxSize[2] }, { 0, 0, 1 }));
-      break;
-    default:
-      break;
+    }
+    break;
+  }
+  case BOX:
+  case BOWL:
+    container.type =
+        this->Container == BOX ? craterkit::Container::Type::Box : craterkit::Container::Type::Bowl;
+    container.bowlRadius = this->ContainerRadius;
+    container.boxSize = {this->BoxSize[0], this->BoxSize[1], this->BoxSize[2]};
+    p.walls = containerWalls(container);
+    break;
+  case CYLINDER:
+    p.walls.push_back(Wall::cylinder({0, 0, 0}, {0, 0, 1}, this->ContainerRadius));
+    p.walls.push_back(Wall::plane({0, 0, -this->BoxSize[2]}, {0, 0, 1}));
+    break;
+  default:
+    break;
   }
 
   this->Run = std::make_unique<DemRun>(particles, p, start,
-    static_cast<std::size_t>(std::max(0, this->KeptStates)));
+                                       static_cast<std::size_t>(std::max(0, this->KeptStates)));
   if (this->ResumeFromCheckpoint && !this->CheckpointFile.empty() &&
-    std::ifstream(this->CheckpointFile).good())
+      std::ifstream(this->CheckpointFile).good())
     this->Run->resumeFrom(this->CheckpointFile);
   this->WarningsShown = 0;
 }
 
-int vtkCraterKitDEMIntegrator::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
+int vtkCraterKitDEMIntegrator::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+                                           vtkInformationVector* outputVector) {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   using namespace craterkit;
 
-  if (!this->Run || this->GetMTime() > this->RunBuildTime || input->GetMTime() > this->RunBuildTime)
-  {
+  if (!this->Run || this->GetMTime() > this->RunBuildTime ||
+      input->GetMTime() > this->RunBuildTime) {
     this->Run.reset();
     if (!bridge::run(this, [&] { this->BuildRun(input); }))
       return 0;
@@ -172,8 +168,7 @@ int vtkCraterKitDEMIntegrator::RequestData(
   const bool ok = bridge::run(this, [&] {
     this->Run->advanceTo(t, bridge::progressOf(this), checkpoint, this->CheckpointInterval);
   });
-  if (!ok)
-  {
+  if (!ok) {
     this->Run.reset(); // a failed or aborted run restarts cleanly on the next request
     return 0;
   }
@@ -201,7 +196,7 @@ int vtkCraterKitDEMIntegrator::RequestData(
   bridge::addField(fd, "MaxOverlap", d.maxOverlap);
   bridge::addField(fd, "Contacts", static_cast<double>(d.contacts));
   bridge::addField(fd, "OverlapWarningSteps", static_cast<double>(solver.overlapWarnings()));
-  const double g[3] = { this->SurfaceGravity[0], this->SurfaceGravity[1], this->SurfaceGravity[2] };
+  const double g[3] = {this->SurfaceGravity[0], this->SurfaceGravity[1], this->SurfaceGravity[2]};
   bridge::addField(fd, "Gravity", g, 3);
   // The pipeline time is the requested one (the state is the first step at or after it;
   // field data "Time" holds the exact simulated time).
@@ -209,8 +204,7 @@ int vtkCraterKitDEMIntegrator::RequestData(
   return 1;
 }
 
-void vtkCraterKitDEMIntegrator::PrintSelf(ostream& os, vtkIndent indent)
-{
+void vtkCraterKitDEMIntegrator::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ContactLaw: " << this->ContactLaw << "\n";
   os << indent << "NormalStiffness: " << this->NormalStiffness << "\n";
@@ -234,8 +228,8 @@ void vtkCraterKitDEMIntegrator::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SurfaceGravity: " << this->SurfaceGravity[0] << " " << this->SurfaceGravity[1]
      << " " << this->SurfaceGravity[2] << "\n";
   os << indent << "PointMassGM: " << this->PointMassGM << "\n";
-  os << indent << "PointMassCentre: " << this->PointMassCentre[0] << " "
-     << this->PointMassCentre[1] << " " << this->PointMassCentre[2] << "\n";
+  os << indent << "PointMassCentre: " << this->PointMassCentre[0] << " " << this->PointMassCentre[1]
+     << " " << this->PointMassCentre[2] << "\n";
   os << indent << "TimeStep: " << this->TimeStep << "\n";
   os << indent << "StepsPerCollision: " << this->StepsPerCollision << "\n";
   os << indent << "EndTime: " << this->EndTime << "\n";

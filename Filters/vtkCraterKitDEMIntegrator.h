@@ -18,13 +18,11 @@
 #include <memory>
 #include <string>
 
-namespace craterkit
-{
+namespace craterkit {
 class DemRun;
 }
 
-class CRATERKITFILTERS_EXPORT vtkCraterKitDEMIntegrator : public vtkPolyDataAlgorithm
-{
+class CRATERKITFILTERS_EXPORT vtkCraterKitDEMIntegrator : public vtkPolyDataAlgorithm {
 public:
   static vtkCraterKitDEMIntegrator* New();
   vtkTypeMacro(vtkCraterKitDEMIntegrator, vtkPolyDataAlgorithm);
@@ -125,11 +123,11 @@ protected:
   double MaxOverlap = 0.01;
   int Container = FROM_INPUT;
   double ContainerRadius = 15.0;
-  double BoxSize[3] = { 10.0, 10.0, 5.0 };
+  double BoxSize[3] = {10.0, 10.0, 5.0};
   int GravityModel = UNIFORM;
-  double SurfaceGravity[3] = { 0.0, 0.0, -1.5e-4 };
+  double SurfaceGravity[3] = {0.0, 0.0, -1.5e-4};
   double PointMassGM = 30.0;
-  double PointMassCentre[3] = { 0.0, 0.0, -448.0 };
+  double PointMassCentre[3] = {0.0, 0.0, -448.0};
   double TimeStep = 0.0;
   double StepsPerCollision = 30.0;
   double EndTime = 10.0;

@@ -13,20 +13,15 @@
 
 vtkStandardNewMacro(vtkCraterKitFragmentAnalysis);
 
-vtkCraterKitFragmentAnalysis::vtkCraterKitFragmentAnalysis()
-{
-  this->SetNumberOfOutputPorts(3);
-}
+vtkCraterKitFragmentAnalysis::vtkCraterKitFragmentAnalysis() { this->SetNumberOfOutputPorts(3); }
 
-int vtkCraterKitFragmentAnalysis::FillOutputPortInformation(int port, vtkInformation* info)
-{
+int vtkCraterKitFragmentAnalysis::FillOutputPortInformation(int port, vtkInformation* info) {
   info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkTable");
   return 1;
 }
 
-int vtkCraterKitFragmentAnalysis::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
+int vtkCraterKitFragmentAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+                                              vtkInformationVector* outputVector) {
   using namespace craterkit;
   namespace b = craterkit::bridge;
   vtkPolyData* in = vtkPolyData::GetData(inputVector[0], 0);
@@ -45,8 +40,7 @@ int vtkCraterKitFragmentAnalysis::RequestData(
     if (!radius || !mass || !vel || vel->GetNumberOfComponents() != 3)
       throw InputError("FragmentAnalysis: the input needs Radius, Mass and Velocity point arrays");
     std::vector<double> x(3 * n), rad(n), m(n), v(3 * n);
-    for (vtkIdType i = 0; i < n; ++i)
-    {
+    for (vtkIdType i = 0; i < n; ++i) {
       in->GetPoint(i, &x[3 * i]);
       rad[i] = radius->GetComponent(i, 0);
       m[i] = mass->GetComponent(i, 0);
@@ -57,16 +51,17 @@ int vtkCraterKitFragmentAnalysis::RequestData(
     for (int k = 0; k < 3; ++k)
       p.axis[k] = this->CloudAxis[k], p.origin[k] = this->CloudOrigin[k];
     p.cloudStart = this->CloudStart;
-    if (vtkCellArray* lines = in->GetLines())
-    {
+    if (vtkCellArray* lines = in->GetLines()) {
       auto ids = vtkSmartPointer<vtkIdList>::New();
       for (lines->InitTraversal(); lines->GetNextCell(ids);)
         for (vtkIdType k = 0; k + 1 < ids->GetNumberOfIds(); ++k)
-          p.bonds.emplace_back(static_cast<std::size_t>(ids->GetId(k)), static_cast<std::size_t>(ids->GetId(k + 1)));
+          p.bonds.emplace_back(static_cast<std::size_t>(ids->GetId(k)),
+                               static_cast<std::size_t>(ids->GetId(k + 1)));
     }
     r = analyseFragments(x, rad, m, v, p);
-    surface = this->SurfaceFromInput ? b::fieldScalar(in->GetFieldData(), "SurfaceHeight", this->SurfaceHeight)
-                                     : this->SurfaceHeight;
+    surface = this->SurfaceFromInput
+                  ? b::fieldScalar(in->GetFieldData(), "SurfaceHeight", this->SurfaceHeight)
+                  : this->SurfaceHeight;
     ej = ejectaStatistics(x, rad, m, v, surface, this->ImpactAxis);
   });
   if (!ok)
@@ -79,12 +74,12 @@ int vtkCraterKitFragmentAnalysis::RequestData(
   const std::size_t nf = r.fragments.size();
   std::vector<double> mass(nf), centre(3 * nf), velocity(3 * nf);
   std::vector<int> count(nf);
-  for (std::size_t k = 0; k < nf; ++k)
-  {
+  for (std::size_t k = 0; k < nf; ++k) {
     count[k] = static_cast<int>(r.fragments[k].count);
     mass[k] = r.fragments[k].mass;
     for (int a = 0; a < 3; ++a)
-      centre[3 * k + a] = r.fragments[k].centre[a], velocity[3 * k + a] = r.fragments[k].velocity[a];
+      centre[3 * k + a] = r.fragments[k].centre[a],
+                     velocity[3 * k + a] = r.fragments[k].velocity[a];
   }
   table->AddColumn(b::intArray("Count", count));
   table->AddColumn(b::doubleArray("Mass", 1, mass));
@@ -95,8 +90,7 @@ int vtkCraterKitFragmentAnalysis::RequestData(
   vtkTable* ejecta = vtkTable::GetData(outputVector, 2);
   ejecta->AddColumn(b::doubleArray("Speed", 1, ej.speed));
   ejecta->AddColumn(b::doubleArray("MassAbove", 1, ej.massAbove));
-  for (vtkFieldData* fd : { out->GetFieldData(), table->GetFieldData(), ejecta->GetFieldData() })
-  {
+  for (vtkFieldData* fd : {out->GetFieldData(), table->GetFieldData(), ejecta->GetFieldData()}) {
     b::addField(fd, "EjectaCount", static_cast<double>(ej.count));
     b::addField(fd, "EjectaMass", ej.mass);
     b::addField(fd, "MeanEjectionAngle", ej.meanAngle);
@@ -113,13 +107,13 @@ int vtkCraterKitFragmentAnalysis::RequestData(
   return 1;
 }
 
-void vtkCraterKitFragmentAnalysis::PrintSelf(ostream& os, vtkIndent indent)
-{
+void vtkCraterKitFragmentAnalysis::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ContactTolerance: " << this->ContactTolerance << "\n";
-  os << indent << "CloudAxis: " << this->CloudAxis[0] << " " << this->CloudAxis[1] << " " << this->CloudAxis[2] << "\n";
-  os << indent << "CloudOrigin: " << this->CloudOrigin[0] << " " << this->CloudOrigin[1] << " " << this->CloudOrigin[2]
-     << "\n";
+  os << indent << "CloudAxis: " << this->CloudAxis[0] << " " << this->CloudAxis[1] << " "
+     << this->CloudAxis[2] << "\n";
+  os << indent << "CloudOrigin: " << this->CloudOrigin[0] << " " << this->CloudOrigin[1] << " "
+     << this->CloudOrigin[2] << "\n";
   os << indent << "CloudStart: " << this->CloudStart << "\n";
   os << indent << "SurfaceFromInput: " << this->SurfaceFromInput << "\n";
   os << indent << "SurfaceHeight: " << this->SurfaceHeight << "\n";

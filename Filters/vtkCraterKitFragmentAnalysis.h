@@ -19,8 +19,7 @@
 #include "CraterKitFiltersModule.h"
 #include <vtkPolyDataAlgorithm.h>
 
-class CRATERKITFILTERS_EXPORT vtkCraterKitFragmentAnalysis : public vtkPolyDataAlgorithm
-{
+class CRATERKITFILTERS_EXPORT vtkCraterKitFragmentAnalysis : public vtkPolyDataAlgorithm {
 public:
   static vtkCraterKitFragmentAnalysis* New();
   vtkTypeMacro(vtkCraterKitFragmentAnalysis, vtkPolyDataAlgorithm);
@@ -52,12 +51,12 @@ private:
   void operator=(const vtkCraterKitFragmentAnalysis&) = delete;
 
   double ContactTolerance = 0.01;
-  double CloudAxis[3] = { 0.0, 0.0, -1.0 };
-  double CloudOrigin[3] = { 0.0, 0.0, 0.0 };
+  double CloudAxis[3] = {0.0, 0.0, -1.0};
+  double CloudOrigin[3] = {0.0, 0.0, 0.0};
   double CloudStart = 0.0;
   int SurfaceFromInput = 1;
   double SurfaceHeight = 0.0;
-  double ImpactAxis[2] = { 0.0, 0.0 };
+  double ImpactAxis[2] = {0.0, 0.0};
 };
 
 #endif

@@ -10,22 +10,19 @@
 
 vtkStandardNewMacro(vtkCraterKitGranularBed);
 
-vtkCraterKitGranularBed::vtkCraterKitGranularBed()
-{
-  this->SetNumberOfInputPorts(0);
-}
+vtkCraterKitGranularBed::vtkCraterKitGranularBed() { this->SetNumberOfInputPorts(0); }
 
-int vtkCraterKitGranularBed::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
-{
+int vtkCraterKitGranularBed::RequestData(vtkInformation*, vtkInformationVector**,
+                                         vtkInformationVector* outputVector) {
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   using namespace craterkit;
 
   GranularBedParams p;
-  p.packing = this->Packing == HCP ? GranularBedParams::Packing::HCP : GranularBedParams::Packing::RCP;
+  p.packing =
+      this->Packing == HCP ? GranularBedParams::Packing::HCP : GranularBedParams::Packing::RCP;
   p.container.type = this->Container == BOX ? Container::Type::Box : Container::Type::Bowl;
   p.container.bowlRadius = this->ContainerRadius;
-  p.container.boxSize = { this->BoxSize[0], this->BoxSize[1], this->BoxSize[2] };
+  p.container.boxSize = {this->BoxSize[0], this->BoxSize[1], this->BoxSize[2]};
   p.container.surfaceHeight = this->SurfaceHeight;
   p.sizes.type = static_cast<SizeDistribution::Type>(this->SizeDistribution);
   p.sizes.radius = this->ParticleRadius;
@@ -63,8 +60,7 @@ int vtkCraterKitGranularBed::RequestData(
   bridge::addField(fd, "BulkPackingFraction", report.bulkPackingFraction);
   bridge::addField(fd, "TopHeight", report.topHeight);
   bridge::addField(fd, "NumberOfParticles", static_cast<double>(report.particles));
-  if (p.packing == GranularBedParams::Packing::RCP && p.settle)
-  {
+  if (p.packing == GranularBedParams::Packing::RCP && p.settle) {
     bridge::addField(fd, "Settled", report.settled ? 1.0 : 0.0);
     bridge::addField(fd, "SettlingTime", report.settlingTime);
     bridge::addField(fd, "SettlingSteps", static_cast<double>(report.settlingSteps));
@@ -76,8 +72,7 @@ int vtkCraterKitGranularBed::RequestData(
   return 1;
 }
 
-void vtkCraterKitGranularBed::PrintSelf(ostream& os, vtkIndent indent)
-{
+void vtkCraterKitGranularBed::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   // One "Name: value" line per property, with the XML property names: the proxy test
   // compares these C++ defaults with the XML defaults.

@@ -14,8 +14,7 @@
 #include "CraterKitFiltersModule.h"
 #include <vtkPolyDataAlgorithm.h>
 
-class CRATERKITFILTERS_EXPORT vtkCraterKitGranularBed : public vtkPolyDataAlgorithm
-{
+class CRATERKITFILTERS_EXPORT vtkCraterKitGranularBed : public vtkPolyDataAlgorithm {
 public:
   static vtkCraterKitGranularBed* New();
   vtkTypeMacro(vtkCraterKitGranularBed, vtkPolyDataAlgorithm);
@@ -71,7 +70,7 @@ protected:
   int Packing = RCP;
   int Container = BOWL;
   double ContainerRadius = 15.0;
-  double BoxSize[3] = { 10.0, 10.0, 5.0 };
+  double BoxSize[3] = {10.0, 10.0, 5.0};
   double SurfaceHeight = 0.0;
   int SizeDistribution = MONODISPERSE;
   double ParticleRadius = 0.5;

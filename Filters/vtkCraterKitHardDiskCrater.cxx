@@ -23,65 +23,57 @@
 
 vtkStandardNewMacro(vtkCraterKitHardDiskCrater);
 
-vtkCraterKitHardDiskCrater::vtkCraterKitHardDiskCrater()
-{
+vtkCraterKitHardDiskCrater::vtkCraterKitHardDiskCrater() {
   this->SetNumberOfInputPorts(0);
   this->SetNumberOfOutputPorts(3);
 }
 
 vtkCraterKitHardDiskCrater::~vtkCraterKitHardDiskCrater() = default;
 
-namespace
-{
+namespace {
 using craterkit::HardDiskCraterParams;
 
 // Model coordinates (x, y up) to the output's x-z plane.
-void AddPoint(vtkPoints* points, double x, double y)
-{
-  points->InsertNextPoint(x, 0.0, y);
-}
+void AddPoint(vtkPoints* points, double x, double y) { points->InsertNextPoint(x, 0.0, y); }
 
-vtkSmartPointer<vtkIntArray> IntArray(const char* name, vtkIdType n)
-{
+vtkSmartPointer<vtkIntArray> IntArray(const char* name, vtkIdType n) {
   auto a = vtkSmartPointer<vtkIntArray>::New();
   a->SetName(name);
   a->SetNumberOfTuples(n);
   return a;
 }
 
-vtkSmartPointer<vtkDoubleArray> DoubleArray(const char* name, int components, vtkIdType n)
-{
+vtkSmartPointer<vtkDoubleArray> DoubleArray(const char* name, int components, vtkIdType n) {
   auto a = vtkSmartPointer<vtkDoubleArray>::New();
   a->SetName(name);
   a->SetNumberOfComponents(components);
   a->SetNumberOfTuples(n);
   return a;
 }
-}
+} // namespace
 
-int vtkCraterKitHardDiskCrater::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
-{
-  std::vector<double> times{ 0.0 };
-  if (this->FrameInterval > 0.0 && this->EndTime > 0.0 && std::isfinite(this->EndTime / this->FrameInterval))
-  {
-    const long frames = static_cast<long>(std::floor(this->EndTime / this->FrameInterval * (1.0 + 1e-12)));
+int vtkCraterKitHardDiskCrater::RequestInformation(vtkInformation*, vtkInformationVector**,
+                                                   vtkInformationVector* outputVector) {
+  std::vector<double> times{0.0};
+  if (this->FrameInterval > 0.0 && this->EndTime > 0.0 &&
+      std::isfinite(this->EndTime / this->FrameInterval)) {
+    const long frames =
+        static_cast<long>(std::floor(this->EndTime / this->FrameInterval * (1.0 + 1e-12)));
     for (long k = 1; k <= std::min(frames, 100000L); ++k)
       times.push_back(k * this->FrameInterval);
   }
-  const double range[2] = { times.front(), times.back() };
-  for (int port = 0; port < 3; ++port)
-  {
+  const double range[2] = {times.front(), times.back()};
+  for (int port = 0; port < 3; ++port) {
     vtkInformation* outInfo = outputVector->GetInformationObject(port);
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
+                 static_cast<int>(times.size()));
     outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
   }
   return 1;
 }
 
-int vtkCraterKitHardDiskCrater::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
-{
+int vtkCraterKitHardDiskCrater::RequestData(vtkInformation*, vtkInformationVector**,
+                                            vtkInformationVector* outputVector) {
   using namespace craterkit;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   double t = 0.0;
@@ -92,8 +84,7 @@ int vtkCraterKitHardDiskCrater::RequestData(
   const bool ok = bridge::run(this, [&] {
     if (this->Preset != CUSTOM)
       p = HardDiskCraterParams::preset(HardDiskCraterParams::presetNames()[this->Preset - 1]);
-    else
-    {
+    else {
       p.width = this->Width;
       p.groundDepth = this->GroundDepth;
       p.headroom = this->Headroom;
@@ -117,19 +108,18 @@ int vtkCraterKitHardDiskCrater::RequestData(
     p.seed = static_cast<std::uint64_t>(this->RandomSeed);
     p.validate();
 
-    const std::size_t frame = static_cast<std::size_t>(
-      std::max(0.0, std::round(t / p.frameInterval)));
+    const std::size_t frame =
+        static_cast<std::size_t>(std::max(0.0, std::round(t / p.frameInterval)));
     // A new run when a property changed or an earlier frame is asked for (runs go forwards).
-    if (!this->Run || this->GetMTime() > this->RunBuildTime || frame < this->Run->currentFrame())
-    {
+    if (!this->Run || this->GetMTime() > this->RunBuildTime || frame < this->Run->currentFrame()) {
       this->Run.reset();
       this->Run = std::make_unique<HardDiskCraterRun>(p, bridge::progressOf(this, 0.0, 0.2));
       this->RunBuildTime.Modified();
     }
-    this->Run->advanceToFrame(std::min(frame, this->Run->frameCount() - 1), bridge::progressOf(this, 0.2, 1.0));
+    this->Run->advanceToFrame(std::min(frame, this->Run->frameCount() - 1),
+                              bridge::progressOf(this, 0.2, 1.0));
   });
-  if (!ok)
-  {
+  if (!ok) {
     this->Run.reset();
     return 0;
   }
@@ -160,11 +150,10 @@ int vtkCraterKitHardDiskCrater::RequestData(
     tracer->FillValue(0);
     for (std::uint32_t k : run.tracers())
       tracer->SetValue(k, 1);
-    for (vtkIdType i = 0; i < n; ++i)
-    {
+    for (vtkIdType i = 0; i < n; ++i) {
       AddPoint(points, d.x[i], d.y[i]);
       verts->InsertNextCell(1, &i);
-      const double v[3] = { d.vx[i], 0.0, d.vy[i] };
+      const double v[3] = {d.vx[i], 0.0, d.vy[i]};
       velocity->SetTuple(i, v);
       radius->SetValue(i, d.radius[i]);
       mass->SetValue(i, d.mass[i]);
@@ -176,7 +165,8 @@ int vtkCraterKitHardDiskCrater::RequestData(
     disks->SetPoints(points);
     disks->SetVerts(verts);
     vtkPointData* pd = disks->GetPointData();
-    for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{ velocity, radius, mass, density, material, tracer, disturbed, ids })
+    for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{
+             velocity, radius, mass, density, material, tracer, disturbed, ids})
       pd->AddArray(a);
     pd->SetActiveScalars("Radius");
   }
@@ -191,13 +181,11 @@ int vtkCraterKitHardDiskCrater::RequestData(
     time->SetName("Time");
     auto ids = vtkSmartPointer<vtkTypeInt64Array>::New();
     ids->SetName("Id");
-    for (std::size_t k = 0; k < run.tracers().size(); ++k)
-    {
+    for (std::size_t k = 0; k < run.tracers().size(); ++k) {
       const std::vector<double>& path = run.tracerPaths()[k];
       const vtkIdType count = static_cast<vtkIdType>(path.size() / 2);
       lines->InsertNextCell(count);
-      for (vtkIdType f = 0; f < count; ++f)
-      {
+      for (vtkIdType f = 0; f < count; ++f) {
         lines->InsertCellPoint(points->GetNumberOfPoints());
         AddPoint(points, path[2 * f], path[2 * f + 1]);
         time->InsertNextValue(run.frameTime(static_cast<std::size_t>(f)));
@@ -220,8 +208,7 @@ int vtkCraterKitHardDiskCrater::RequestData(
     points->SetDataTypeToDouble();
     auto lines = vtkSmartPointer<vtkCellArray>::New();
     lines->InsertNextCell(static_cast<vtkIdType>(top.size()));
-    for (std::size_t b = 0; b < top.size(); ++b)
-    {
+    for (std::size_t b = 0; b < top.size(); ++b) {
       lines->InsertCellPoint(static_cast<vtkIdType>(b));
       AddPoint(points, (b + 0.5) * bin, top[b]);
     }
@@ -229,12 +216,12 @@ int vtkCraterKitHardDiskCrater::RequestData(
     outline->SetLines(lines);
     // Depth below the original surface; width: the run of bins around the impact point
     // whose top is more than one disk diameter below the original surface.
-    const std::size_t centre = std::min(top.size() - 1, static_cast<std::size_t>(run.impactX() / bin));
+    const std::size_t centre =
+        std::min(top.size() - 1, static_cast<std::size_t>(run.impactX() / bin));
     const double surface = run.surfaceLevel(), drop = 2.0 * run.params().diskRadius;
     depth = std::max(0.0, surface - *std::min_element(top.begin(), top.end()));
     std::size_t lo = centre, hi = centre;
-    if (top[centre] < surface - drop)
-    {
+    if (top[centre] < surface - drop) {
       while (lo > 0 && top[lo - 1] < surface - drop)
         --lo;
       while (hi + 1 < top.size() && top[hi + 1] < surface - drop)
@@ -247,8 +234,7 @@ int vtkCraterKitHardDiskCrater::RequestData(
   auto fd = vtkSmartPointer<vtkFieldData>::New();
   const std::vector<HardDiskCraterRun::Ejection> ejections = run.ejections();
   double meanAngle = std::nan("");
-  if (!ejections.empty())
-  {
+  if (!ejections.empty()) {
     meanAngle = 0.0;
     for (const auto& e : ejections)
       meanAngle += e.angleDeg;
@@ -256,8 +242,8 @@ int vtkCraterKitHardDiskCrater::RequestData(
   }
   double px, py;
   run.system().momentum(px, py);
-  const double momentum[3] = { px, 0.0, py };
-  const double impact[3] = { run.impactX(), 0.0, run.surfaceLevel() };
+  const double momentum[3] = {px, 0.0, py};
+  const double impact[3] = {run.impactX(), 0.0, run.surfaceLevel()};
   bridge::addField(fd, "Time", frameTime);
   bridge::addField(fd, "Frame", static_cast<double>(run.currentFrame()));
   bridge::addField(fd, "PairCollisions", static_cast<double>(run.system().pairCollisions()));
@@ -267,7 +253,7 @@ int vtkCraterKitHardDiskCrater::RequestData(
   bridge::addField(fd, "ShockFrontRadius", run.shockFront().back());
   bridge::addField(fd, "ImpactPoint", impact, 3);
   bridge::addField(fd, "SurfaceHeight", run.surfaceLevel());
-  const double box[3] = { run.system().params().width, 0.0, run.system().params().height };
+  const double box[3] = {run.system().params().width, 0.0, run.system().params().height};
   bridge::addField(fd, "BoxSize", box, 3);
   bridge::addField(fd, "EjectedDisks", static_cast<double>(ejections.size()));
   bridge::addField(fd, "MeanEjectionAngle", meanAngle);
@@ -284,13 +270,15 @@ int vtkCraterKitHardDiskCrater::RequestData(
     fd->AddArray(a);
   };
   series("EjectionAngle", ejections.size(), [&](std::size_t k) { return ejections[k].angleDeg; });
-  series("EjectionDistance", ejections.size(), [&](std::size_t k) { return ejections[k].distance; });
+  series("EjectionDistance", ejections.size(),
+         [&](std::size_t k) { return ejections[k].distance; });
   series("EjectionSpeed", ejections.size(), [&](std::size_t k) { return ejections[k].speed; });
   series("EjectionTime", ejections.size(), [&](std::size_t k) { return ejections[k].time; });
-  series("ShockFrontHistory", run.shockFront().size(), [&](std::size_t k) { return run.shockFront()[k]; });
-  bridge::addField(fd, "GroundDisks", static_cast<double>(std::count(d.material.begin(), d.material.end(), 0)));
-  for (int port = 0; port < 3; ++port)
-  {
+  series("ShockFrontHistory", run.shockFront().size(),
+         [&](std::size_t k) { return run.shockFront()[k]; });
+  bridge::addField(fd, "GroundDisks",
+                   static_cast<double>(std::count(d.material.begin(), d.material.end(), 0)));
+  for (int port = 0; port < 3; ++port) {
     vtkPolyData* out = vtkPolyData::GetData(outputVector, port);
     out->GetFieldData()->ShallowCopy(fd);
     out->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
@@ -298,8 +286,7 @@ int vtkCraterKitHardDiskCrater::RequestData(
   return 1;
 }
 
-void vtkCraterKitHardDiskCrater::PrintSelf(ostream& os, vtkIndent indent)
-{
+void vtkCraterKitHardDiskCrater::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Preset: " << this->Preset << "\n";
   os << indent << "Width: " << this->Width << "\n";

@@ -22,13 +22,11 @@
 
 #include <memory>
 
-namespace craterkit
-{
+namespace craterkit {
 class HardDiskCraterRun;
 }
 
-class CRATERKITFILTERS_EXPORT vtkCraterKitHardDiskCrater : public vtkPolyDataAlgorithm
-{
+class CRATERKITFILTERS_EXPORT vtkCraterKitHardDiskCrater : public vtkPolyDataAlgorithm {
 public:
   static vtkCraterKitHardDiskCrater* New();
   vtkTypeMacro(vtkCraterKitHardDiskCrater, vtkPolyDataAlgorithm);

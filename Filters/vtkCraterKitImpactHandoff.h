@@ -17,8 +17,7 @@
 #include "CraterKitFiltersModule.h"
 #include <vtkPolyDataAlgorithm.h>
 
-class CRATERKITFILTERS_EXPORT vtkCraterKitImpactHandoff : public vtkPolyDataAlgorithm
-{
+class CRATERKITFILTERS_EXPORT vtkCraterKitImpactHandoff : public vtkPolyDataAlgorithm {
 public:
   static vtkCraterKitImpactHandoff* New();
   vtkTypeMacro(vtkCraterKitImpactHandoff, vtkPolyDataAlgorithm);

@@ -18,37 +18,30 @@
 
 vtkStandardNewMacro(vtkCraterKitSPHImpact);
 
-vtkCraterKitSPHImpact::vtkCraterKitSPHImpact()
-{
-  this->SetNumberOfInputPorts(0);
-}
+vtkCraterKitSPHImpact::vtkCraterKitSPHImpact() { this->SetNumberOfInputPorts(0); }
 vtkCraterKitSPHImpact::~vtkCraterKitSPHImpact() = default;
 
-namespace
-{
-std::string DefaultMaterialDirectory()
-{
+namespace {
+std::string DefaultMaterialDirectory() {
   if (const char* env = std::getenv("CRATERKIT_MATERIALS"))
     return env;
   return CRATERKIT_MATERIALS_DIR;
 }
-}
+} // namespace
 
-int vtkCraterKitSPHImpact::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
-{
+int vtkCraterKitSPHImpact::RequestInformation(vtkInformation*, vtkInformationVector**,
+                                              vtkInformationVector* outputVector) {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   const std::vector<double> times =
-    craterkit::bridge::outputTimes(0.0, this->EndTime, this->OutputInterval, 100000);
+      craterkit::bridge::outputTimes(0.0, this->EndTime, this->OutputInterval, 100000);
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
-    static_cast<int>(times.size()));
-  const double range[2] = { times.front(), times.back() };
+               static_cast<int>(times.size()));
+  const double range[2] = {times.front(), times.back()};
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
   return 1;
 }
 
-void vtkCraterKitSPHImpact::BuildRun()
-{
+void vtkCraterKitSPHImpact::BuildRun() {
   using namespace craterkit;
   if (!(this->EndTime >= 0.0) || !std::isfinite(this->EndTime))
     throw InputError("EndTime must be a non-negative time in s");
@@ -58,7 +51,7 @@ void vtkCraterKitSPHImpact::BuildRun()
     throw InputError("MinTimeStep must not be negative");
   SphImpactSetup setup;
   setup.materialDirectory =
-    this->MaterialDirectory.empty() ? DefaultMaterialDirectory() : this->MaterialDirectory;
+      this->MaterialDirectory.empty() ? DefaultMaterialDirectory() : this->MaterialDirectory;
   setup.impactorMaterial = this->ImpactorMaterial;
   setup.impactorMass = this->ImpactorMass;
   setup.impactorRadius = this->ImpactorRadius;
@@ -77,7 +70,8 @@ void vtkCraterKitSPHImpact::BuildRun()
   setup.container = this->TargetContainer;
   SphImpactProblem problem = buildImpact(setup);
   SphParams& p = problem.params;
-  p.kernel = this->Kernel == WENDLAND_C2 ? SphParams::Kernel::WendlandC2 : SphParams::Kernel::CubicSpline;
+  p.kernel =
+      this->Kernel == WENDLAND_C2 ? SphParams::Kernel::WendlandC2 : SphParams::Kernel::CubicSpline;
   p.alpha = this->ArtificialViscosityAlpha;
   p.beta = this->ArtificialViscosityBeta;
   p.xsph = this->XSPH;
@@ -88,23 +82,21 @@ void vtkCraterKitSPHImpact::BuildRun()
   p.lateStageSoundSpeed = this->LateStageSoundSpeed;
   this->Spacing = problem.spacing;
   this->ContainerParticles = problem.containerParticles;
-  this->Run = std::make_unique<SphRun>(
-    problem.state, p, static_cast<std::size_t>(std::max(0, this->KeptStates)));
+  this->Run = std::make_unique<SphRun>(problem.state, p,
+                                       static_cast<std::size_t>(std::max(0, this->KeptStates)));
   if (this->ResumeFromCheckpoint && !this->CheckpointFile.empty() &&
-    std::ifstream(this->CheckpointFile).good())
+      std::ifstream(this->CheckpointFile).good())
     this->Run->resumeFrom(this->CheckpointFile);
 }
 
-int vtkCraterKitSPHImpact::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
-{
+int vtkCraterKitSPHImpact::RequestData(vtkInformation*, vtkInformationVector**,
+                                       vtkInformationVector* outputVector) {
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   using namespace craterkit;
   namespace b = craterkit::bridge;
 
-  if (!this->Run || this->GetMTime() > this->RunBuildTime)
-  {
+  if (!this->Run || this->GetMTime() > this->RunBuildTime) {
     this->Run.reset();
     if (!b::run(this, [&] { this->BuildRun(); }))
       return 0;
@@ -117,8 +109,7 @@ int vtkCraterKitSPHImpact::RequestData(
   const bool ok = b::run(this, [&] {
     this->Run->advanceTo(t, b::progressOf(this), this->CheckpointFile, this->CheckpointInterval);
   });
-  if (!ok)
-  {
+  if (!ok) {
     this->Run.reset(); // a failed or aborted run restarts cleanly on the next request
     return 0;
   }
@@ -129,7 +120,8 @@ int vtkCraterKitSPHImpact::RequestData(
   const std::size_t nOut = s.size() - this->ContainerParticles;
   const vtkIdType n = static_cast<vtkIdType>(nOut);
   auto head = [nOut](const std::vector<double>& v, std::size_t components) {
-    return std::vector<double>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(nOut * components));
+    return std::vector<double>(v.begin(),
+                               v.begin() + static_cast<std::ptrdiff_t>(nOut * components));
   };
   b::setVertices(output, head(s.x, 3));
 
@@ -145,14 +137,14 @@ int vtkCraterKitSPHImpact::RequestData(
   pd->AddArray(b::doubleArray("SoundSpeed", 1, head(solver.soundSpeed(), 1)));
   // VTK's symmetric tensor order is XX YY ZZ XY YZ XZ; the solver stores XX YY ZZ XY XZ YZ.
   std::vector<double> stress(6 * nOut);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
+  for (vtkIdType i = 0; i < n; ++i) {
     const double* S = &s.S[6 * i];
     double* o = &stress[6 * i];
     o[0] = S[0], o[1] = S[1], o[2] = S[2], o[3] = S[3], o[4] = S[5], o[5] = S[4];
   }
   pd->AddArray(b::doubleArray("DeviatoricStress", 6, stress));
-  pd->AddArray(b::intArray("Material", std::vector<int>(s.material.begin(), s.material.begin() + n)));
+  pd->AddArray(
+      b::intArray("Material", std::vector<int>(s.material.begin(), s.material.begin() + n)));
   std::vector<std::int64_t> ids(nOut);
   for (std::size_t i = 0; i < ids.size(); ++i)
     ids[i] = static_cast<std::int64_t>(i);
@@ -163,7 +155,7 @@ int vtkCraterKitSPHImpact::RequestData(
   b::addField(fd, "Time", solver.time());
   b::addField(fd, "Step", static_cast<double>(solver.steps()));
   b::addField(fd, "TimeStep", solver.stableStep());
-  const double g[3] = { 0.0, 0.0, -this->SurfaceGravity };
+  const double g[3] = {0.0, 0.0, -this->SurfaceGravity};
   b::addField(fd, "Gravity", g, 3);
   double P[3], L[3];
   solver.totalMomentum(P);
@@ -180,7 +172,8 @@ int vtkCraterKitSPHImpact::RequestData(
   b::addField(fd, "TargetCoarsening", this->TargetCoarsening);
   b::addField(fd, "TargetContainer", this->TargetContainer ? 1.0 : 0.0);
   b::addField(fd, "ContainerParticles", static_cast<double>(this->ContainerParticles));
-  b::addField(fd, "TargetShape", std::string(this->TargetShape == HALF_SPACE ? "HalfSpace" : "Hemisphere"));
+  b::addField(fd, "TargetShape",
+              std::string(this->TargetShape == HALF_SPACE ? "HalfSpace" : "Hemisphere"));
   b::addField(fd, "ImpactSpeed", this->ImpactSpeed);
   b::addField(fd, "ImpactAngle", this->ImpactAngle);
   b::addField(fd, "ImpactorMaterial", this->ImpactorMaterial);
@@ -191,8 +184,7 @@ int vtkCraterKitSPHImpact::RequestData(
   return 1;
 }
 
-void vtkCraterKitSPHImpact::PrintSelf(ostream& os, vtkIndent indent)
-{
+void vtkCraterKitSPHImpact::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "MaterialDirectory: " << this->MaterialDirectory << "\n";
   os << indent << "ImpactorMaterial: " << this->ImpactorMaterial << "\n";

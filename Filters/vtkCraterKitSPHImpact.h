@@ -24,13 +24,11 @@
 #include <memory>
 #include <string>
 
-namespace craterkit
-{
+namespace craterkit {
 class SphRun;
 }
 
-class CRATERKITFILTERS_EXPORT vtkCraterKitSPHImpact : public vtkPolyDataAlgorithm
-{
+class CRATERKITFILTERS_EXPORT vtkCraterKitSPHImpact : public vtkPolyDataAlgorithm {
 public:
   static vtkCraterKitSPHImpact* New();
   vtkTypeMacro(vtkCraterKitSPHImpact, vtkPolyDataAlgorithm);
@@ -117,7 +115,8 @@ private:
   void operator=(const vtkCraterKitSPHImpact&) = delete;
   void BuildRun();
 
-  std::string MaterialDirectory; // empty: CRATERKIT_MATERIALS, else the source tree's data/materials
+  std::string
+      MaterialDirectory; // empty: CRATERKIT_MATERIALS, else the source tree's data/materials
   std::string ImpactorMaterial = "copper";
   double ImpactorMass = 2.0;
   double ImpactorRadius = 0.0;

@@ -45,7 +45,8 @@ inline vtkSmartPointer<vtkIntArray> intArray(const char* name, const std::vector
   return array;
 }
 
-inline vtkSmartPointer<vtkTypeInt64Array> idArray(const char* name, const std::vector<std::int64_t>& values) {
+inline vtkSmartPointer<vtkTypeInt64Array> idArray(const char* name,
+                                                  const std::vector<std::int64_t>& values) {
   auto array = vtkSmartPointer<vtkTypeInt64Array>::New();
   array->SetName(name);
   array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
@@ -76,7 +77,8 @@ inline void setVertices(vtkPolyData* out, const std::vector<double>& xyz) {
 }
 
 // Output times start, start + interval, ..., end (end included), at most `limit` of them.
-inline std::vector<double> outputTimes(double start, double end, double interval, long limit = 1000000) {
+inline std::vector<double> outputTimes(double start, double end, double interval,
+                                       long limit = 1000000) {
   std::vector<double> times{start};
   if (!(interval > 0.0) || !(end > start) || !std::isfinite(end))
     return times;
@@ -135,8 +137,8 @@ inline ParticleSet fromPolyData(vtkPointSet* in) {
     double x[3];
     in->GetPoint(i, x);
     const double r = radius->GetTuple1(i);
-    const double rho = density ? density->GetTuple1(i)
-                               : mass->GetTuple1(i) / (4.0 / 3.0 * M_PI * r * r * r);
+    const double rho =
+        density ? density->GetTuple1(i) : mass->GetTuple1(i) / (4.0 / 3.0 * M_PI * r * r * r);
     s.add(x, r, rho, material ? static_cast<int>(material->GetTuple1(i)) : 0,
           id ? static_cast<std::int64_t>(id->GetTuple1(i)) : static_cast<std::int64_t>(i));
     if (mass)

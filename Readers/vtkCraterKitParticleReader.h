@@ -22,8 +22,7 @@
 #include <memory>
 #include <string>
 
-class CRATERKITREADERS_EXPORT vtkCraterKitParticleReader : public vtkPolyDataAlgorithm
-{
+class CRATERKITREADERS_EXPORT vtkCraterKitParticleReader : public vtkPolyDataAlgorithm {
 public:
   static vtkCraterKitParticleReader* New();
   vtkTypeMacro(vtkCraterKitParticleReader, vtkPolyDataAlgorithm);

@@ -17,19 +17,14 @@ vtkStandardNewMacro(vtkCraterKitParticleWriter);
 
 vtkCraterKitParticleWriter::vtkCraterKitParticleWriter() = default;
 
-vtkCraterKitParticleWriter::~vtkCraterKitParticleWriter()
-{
-  this->SetFileName(nullptr);
-}
+vtkCraterKitParticleWriter::~vtkCraterKitParticleWriter() { this->SetFileName(nullptr); }
 
-int vtkCraterKitParticleWriter::FillInputPortInformation(int, vtkInformation* info)
-{
+int vtkCraterKitParticleWriter::FillInputPortInformation(int, vtkInformation* info) {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
   return 1;
 }
 
-void vtkCraterKitParticleWriter::WriteData()
-{
+void vtkCraterKitParticleWriter::WriteData() {
   using namespace craterkit;
   vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInput());
   const bool ok = bridge::run(this, [&] {
@@ -38,13 +33,13 @@ void vtkCraterKitParticleWriter::WriteData()
     ParticleFrame frame;
     frame.particles = bridge::fromPolyData(input);
     frame.time = bridge::fieldScalar(input->GetFieldData(), "Time", 0.0);
-    frame.timestep = static_cast<long long>(bridge::fieldScalar(input->GetFieldData(), "TimeStep", 0.0));
+    frame.timestep =
+        static_cast<long long>(bridge::fieldScalar(input->GetFieldData(), "TimeStep", 0.0));
     // Every other numeric point array travels with the particles.
-    static const std::set<std::string> model = { "Velocity", "AngularVelocity", "Radius", "Mass",
-      "Density", "Material", "Id" };
+    static const std::set<std::string> model = {"Velocity", "AngularVelocity", "Radius", "Mass",
+                                                "Density",  "Material",        "Id"};
     vtkPointData* pd = input->GetPointData();
-    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
-    {
+    for (int a = 0; a < pd->GetNumberOfArrays(); ++a) {
       vtkDataArray* array = pd->GetArray(a);
       if (!array || !array->GetName() || model.count(array->GetName()))
         continue;
@@ -52,7 +47,7 @@ void vtkCraterKitParticleWriter::WriteData()
       for (char& c : name)
         if (std::isspace(static_cast<unsigned char>(c)))
           c = '_';
-      ExtraArray x{ name, array->GetNumberOfComponents(), {} };
+      ExtraArray x{name, array->GetNumberOfComponents(), {}};
       x.values.resize(static_cast<std::size_t>(array->GetNumberOfTuples()) * x.components);
       for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
         for (int k = 0; k < x.components; ++k)
@@ -68,7 +63,8 @@ void vtkCraterKitParticleWriter::WriteData()
     const std::string partial = name + ".partial";
     {
       std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-      if (!out || !out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())) || !out.flush())
+      if (!out || !out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())) ||
+          !out.flush())
         throw InputError(name + ": cannot write the file");
     }
     if (std::rename(partial.c_str(), name.c_str()) != 0)
@@ -78,8 +74,7 @@ void vtkCraterKitParticleWriter::WriteData()
     this->SetErrorCode(1);
 }
 
-void vtkCraterKitParticleWriter::PrintSelf(ostream& os, vtkIndent indent)
-{
+void vtkCraterKitParticleWriter::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "PkdgravUnits: " << this->PkdgravUnits << "\n";

@@ -14,8 +14,7 @@
 #include "CraterKitReadersModule.h"
 #include <vtkWriter.h>
 
-class CRATERKITREADERS_EXPORT vtkCraterKitParticleWriter : public vtkWriter
-{
+class CRATERKITREADERS_EXPORT vtkCraterKitParticleWriter : public vtkWriter {
 public:
   static vtkCraterKitParticleWriter* New();
   vtkTypeMacro(vtkCraterKitParticleWriter, vtkWriter);

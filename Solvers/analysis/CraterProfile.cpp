@@ -14,15 +14,17 @@ void CraterProfileParams::validate() const {
   if (!(maxRadius >= 0.0) || !std::isfinite(maxRadius))
     throw InputError("CraterProfile: MaxRadius must not be negative (0: automatic)");
   if (radialBins < 0 || radialBins > 100000 || azimuthalBins < 1 || azimuthalBins > 3600)
-    throw InputError("CraterProfile: RadialBins must be in [0, 100000] (0: automatic) and AzimuthalBins in [1, 3600]");
+    throw InputError("CraterProfile: RadialBins must be in [0, 100000] (0: automatic) and "
+                     "AzimuthalBins in [1, 3600]");
   if (minNeighbours < 0 || !(neighbourFactor > 0.0))
-    throw InputError("CraterProfile: the ejecta filter needs a non-negative neighbour count and a positive range");
+    throw InputError("CraterProfile: the ejecta filter needs a non-negative neighbour count and a "
+                     "positive range");
   if (!(slabHalfWidth >= 0.0) || !std::isfinite(slabHalfWidth))
     throw InputError("CraterProfile: the slab half-width must not be negative (0: automatic)");
 }
 
-CraterMeasures measureProfile(const std::vector<double>& radius, const std::vector<double>& height, double z0,
-                              double tolerance) {
+CraterMeasures measureProfile(const std::vector<double>& radius, const std::vector<double>& height,
+                              double z0, double tolerance) {
   CraterMeasures m;
   std::vector<double> r, h;
   for (std::size_t i = 0; i < radius.size(); ++i)
@@ -30,7 +32,8 @@ CraterMeasures measureProfile(const std::vector<double>& radius, const std::vect
       r.push_back(radius[i]), h.push_back(height[i]);
   if (r.size() < 2)
     return m;
-  const std::size_t lowest = static_cast<std::size_t>(std::min_element(h.begin(), h.end()) - h.begin());
+  const std::size_t lowest =
+      static_cast<std::size_t>(std::min_element(h.begin(), h.end()) - h.begin());
   if (!(h[lowest] < z0))
     return m;
   m.depth = z0 - h[lowest];
@@ -73,7 +76,8 @@ CraterMeasures measureProfile(const std::vector<double>& radius, const std::vect
   return m;
 }
 
-CraterProfileResult craterProfile(const std::vector<double>& positions, const std::vector<double>& radii,
+CraterProfileResult craterProfile(const std::vector<double>& positions,
+                                  const std::vector<double>& radii,
                                   const CraterProfileParams& par) {
   par.validate();
   const std::size_t n = radii.size();
@@ -82,17 +86,21 @@ CraterProfileResult craterProfile(const std::vector<double>& positions, const st
   double rmean = 0.0, extent = 0.0, rmax = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!(radii[i] > 0.0) || !std::isfinite(radii[i]))
-      throw InputError("CraterProfile: particle " + std::to_string(i) + " has a non-positive radius");
+      throw InputError("CraterProfile: particle " + std::to_string(i) +
+                       " has a non-positive radius");
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(positions[3 * i + k]))
-        throw InputError("CraterProfile: particle " + std::to_string(i) + " has a non-finite position");
+        throw InputError("CraterProfile: particle " + std::to_string(i) +
+                         " has a non-finite position");
     rmean += radii[i];
     rmax = std::max(rmax, radii[i]);
-    extent = std::max(extent, std::hypot(positions[3 * i] - par.axis[0], positions[3 * i + 1] - par.axis[1]));
+    extent = std::max(
+        extent, std::hypot(positions[3 * i] - par.axis[0], positions[3 * i + 1] - par.axis[1]));
   }
   rmean /= static_cast<double>(n);
   const double R = par.maxRadius > 0.0 ? par.maxRadius : extent;
-  const int nr = par.radialBins > 0 ? par.radialBins : std::max(4, static_cast<int>(R / (5.0 * rmean)));
+  const int nr =
+      par.radialBins > 0 ? par.radialBins : std::max(4, static_cast<int>(R / (5.0 * rmean)));
   const int na = par.azimuthalBins;
   const double dr = R / nr;
 
@@ -110,7 +118,8 @@ CraterProfileResult craterProfile(const std::vector<double>& positions, const st
       if (j == i)
         return;
       const double* y = &positions[3 * j];
-      const double d2 = (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]);
+      const double d2 = (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+                        (x[2] - y[2]) * (x[2] - y[2]);
       count += d2 < range * range;
     });
     bulk[i] = count >= par.minNeighbours;
@@ -118,7 +127,8 @@ CraterProfileResult craterProfile(const std::vector<double>& positions, const st
 
   // Top of the highest bulk particle in each (radial, azimuthal) bin.
   std::vector<double> top(static_cast<std::size_t>(nr) * na, -INFINITY);
-  std::vector<double> topR(top.size(), 0.0); // distance from the axis of the particle giving the top
+  std::vector<double> topR(top.size(),
+                           0.0); // distance from the axis of the particle giving the top
   CraterProfileResult out;
   const double slab = par.slabHalfWidth > 0.0 ? par.slabHalfWidth : 4.0 * rmean;
   for (std::size_t i = 0; i < n; ++i) {

@@ -22,10 +22,10 @@
 namespace craterkit {
 
 struct CraterProfileParams {
-  double axis[2] = {0.0, 0.0};  // impact axis (x, y)
-  double surfaceHeight = 0.0;   // z0, the pre-impact surface
-  double maxRadius = 0.0;       // m; 0: the particles' extent from the axis
-  int radialBins = 0;           // 0: maxRadius over 2.5 mean particle diameters
+  double axis[2] = {0.0, 0.0}; // impact axis (x, y)
+  double surfaceHeight = 0.0;  // z0, the pre-impact surface
+  double maxRadius = 0.0;      // m; 0: the particles' extent from the axis
+  int radialBins = 0;          // 0: maxRadius over 2.5 mean particle diameters
   int azimuthalBins = 16;
   int minNeighbours = 3;        // a surface particle needs this many others ...
   double neighbourFactor = 3.0; // ... within this many of its radii
@@ -39,20 +39,21 @@ struct CraterMeasures {
 };
 
 struct CraterProfileResult {
-  std::vector<double> radius, height;       // the profile: bin centres and h(r) (NaN where empty)
-  std::vector<int> binsUsed;                // azimuthal bins contributing to each radial bin
+  std::vector<double> radius, height; // the profile: bin centres and h(r) (NaN where empty)
+  std::vector<int> binsUsed;          // azimuthal bins contributing to each radial bin
   CraterMeasures all, negativeHalf, positiveHalf; // whole profile, x < axis, x > axis
-  std::vector<std::size_t> slab;            // particles within slabHalfWidth of the x–z plane through the axis
+  std::vector<std::size_t> slab; // particles within slabHalfWidth of the x–z plane through the axis
   std::size_t surfaceParticles = 0, rejectedAsEjecta = 0;
 };
 
 // positions: 3 per particle; radii: per particle (DEM radius or SPH h/2).
-CraterProfileResult craterProfile(const std::vector<double>& positions, const std::vector<double>& radii,
+CraterProfileResult craterProfile(const std::vector<double>& positions,
+                                  const std::vector<double>& radii,
                                   const CraterProfileParams& params);
 
 // The measures of one profile h(r) against z0 (exposed for tests); the rim is the middle of
 // the bins within `tolerance` of the highest between the crater's edge and twice its radius.
-CraterMeasures measureProfile(const std::vector<double>& radius, const std::vector<double>& height, double z0,
-                              double tolerance = 0.0);
+CraterMeasures measureProfile(const std::vector<double>& radius, const std::vector<double>& height,
+                              double z0, double tolerance = 0.0);
 
 } // namespace craterkit

@@ -12,7 +12,9 @@ namespace craterkit {
 namespace {
 struct UnionFind {
   std::vector<std::size_t> parent, size;
-  explicit UnionFind(std::size_t n) : parent(n), size(n, 1) { std::iota(parent.begin(), parent.end(), 0); }
+  explicit UnionFind(std::size_t n) : parent(n), size(n, 1) {
+    std::iota(parent.begin(), parent.end(), 0);
+  }
   std::size_t find(std::size_t a) {
     while (parent[a] != a)
       a = parent[a] = parent[parent[a]]; // path halving
@@ -37,8 +39,8 @@ void FragmentParams::validate(std::size_t n) const {
     throw InputError("FragmentAnalysis: the cloud axis must be a non-zero vector");
   for (const auto& [a, b] : bonds)
     if (a >= n || b >= n)
-      throw InputError("FragmentAnalysis: a bond names particle " + std::to_string(std::max(a, b)) + " of " +
-                       std::to_string(n));
+      throw InputError("FragmentAnalysis: a bond names particle " + std::to_string(std::max(a, b)) +
+                       " of " + std::to_string(n));
 }
 
 FragmentResult analyseFragments(const std::vector<double>& x, const std::vector<double>& r,
@@ -53,7 +55,8 @@ FragmentResult analyseFragments(const std::vector<double>& x, const std::vector<
   double rmax = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!(r[i] > 0.0) || !std::isfinite(r[i]) || !(m[i] > 0.0))
-      throw InputError("FragmentAnalysis: particle " + std::to_string(i) + " has a non-positive radius or mass");
+      throw InputError("FragmentAnalysis: particle " + std::to_string(i) +
+                       " has a non-positive radius or mass");
     rmax = std::max(rmax, r[i]);
   }
   UnionFind uf(n);
@@ -68,7 +71,8 @@ FragmentResult analyseFragments(const std::vector<double>& x, const std::vector<
       cells.forEachCandidate(&x[3 * i], reach, [&](std::size_t j) {
         if (j <= i)
           return;
-        const double d2 = (x[3 * i] - x[3 * j]) * (x[3 * i] - x[3 * j]) + (x[3 * i + 1] - x[3 * j + 1]) * (x[3 * i + 1] - x[3 * j + 1]) +
+        const double d2 = (x[3 * i] - x[3 * j]) * (x[3 * i] - x[3 * j]) +
+                          (x[3 * i + 1] - x[3 * j + 1]) * (x[3 * i + 1] - x[3 * j + 1]) +
                           (x[3 * i + 2] - x[3 * j + 2]) * (x[3 * i + 2] - x[3 * j + 2]);
         const double cut = (r[i] + r[j]) * (1.0 + par.tolerance);
         if (d2 <= cut * cut)
@@ -101,7 +105,8 @@ FragmentResult analyseFragments(const std::vector<double>& x, const std::vector<
   std::vector<std::size_t> order(frags.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return frags[a].mass != frags[b].mass ? frags[a].mass > frags[b].mass : firstMember[a] < firstMember[b];
+    return frags[a].mass != frags[b].mass ? frags[a].mass > frags[b].mass
+                                          : firstMember[a] < firstMember[b];
   });
   std::vector<long long> rank(frags.size());
   double total = 0.0;
@@ -119,7 +124,8 @@ FragmentResult analyseFragments(const std::vector<double>& x, const std::vector<
   out.largestMassFraction = out.fragments.front().mass / total;
 
   // Debris cloud along the axis.
-  const double len = std::sqrt(par.axis[0] * par.axis[0] + par.axis[1] * par.axis[1] + par.axis[2] * par.axis[2]);
+  const double len =
+      std::sqrt(par.axis[0] * par.axis[0] + par.axis[1] * par.axis[1] + par.axis[2] * par.axis[2]);
   const double e[3] = {par.axis[0] / len, par.axis[1] / len, par.axis[2] / len};
   double lo = INFINITY, hi = -INFINITY, radial = 0.0, front = -INFINITY;
   for (std::size_t i = 0; i < n; ++i) {
@@ -144,8 +150,8 @@ FragmentResult analyseFragments(const std::vector<double>& x, const std::vector<
 }
 
 EjectaStatistics ejectaStatistics(const std::vector<double>& x, const std::vector<double>& r,
-                                  const std::vector<double>& m, const std::vector<double>& v, double z0,
-                                  const double axis[2]) {
+                                  const std::vector<double>& m, const std::vector<double>& v,
+                                  double z0, const double axis[2]) {
   EjectaStatistics out;
   std::vector<std::pair<double, double>> bySpeed; // (speed, mass)
   double angleSum = 0.0;
@@ -165,7 +171,8 @@ EjectaStatistics ejectaStatistics(const std::vector<double>& x, const std::vecto
   if (out.count == 0)
     return out;
   out.meanAngle = angleSum / out.mass;
-  std::sort(bySpeed.begin(), bySpeed.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::sort(bySpeed.begin(), bySpeed.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first; });
   double cum = 0.0;
   for (const auto& [s, mm] : bySpeed) {
     cum += mm;

@@ -18,11 +18,12 @@
 namespace craterkit {
 
 struct FragmentParams {
-  double tolerance = 0.01;                      // contacts: d ≤ (r_i + r_j)(1 + tolerance)
-  std::vector<std::pair<std::size_t, std::size_t>> bonds; // if not empty: the links instead of contacts
-  std::array<double, 3> axis{1.0, 0.0, 0.0};    // debris-cloud axis (impact direction)
-  std::array<double, 3> origin{0.0, 0.0, 0.0};  // a point on the axis
-  double cloudStart = -1e300;                   // cloud = particles with (x − origin)·axis > cloudStart
+  double tolerance = 0.01; // contacts: d ≤ (r_i + r_j)(1 + tolerance)
+  std::vector<std::pair<std::size_t, std::size_t>>
+      bonds;                                   // if not empty: the links instead of contacts
+  std::array<double, 3> axis{1.0, 0.0, 0.0};   // debris-cloud axis (impact direction)
+  std::array<double, 3> origin{0.0, 0.0, 0.0}; // a point on the axis
+  double cloudStart = -1e300; // cloud = particles with (x − origin)·axis > cloudStart
   void validate(std::size_t n) const;
 };
 
@@ -33,11 +34,12 @@ struct Fragment {
 };
 
 struct FragmentResult {
-  std::vector<long long> fragmentId;    // per particle; fragments numbered by decreasing mass
-  std::vector<Fragment> fragments;      // by decreasing mass
-  double fragmentation = 0.0;           // F = N_fragments / N_particles
+  std::vector<long long> fragmentId; // per particle; fragments numbered by decreasing mass
+  std::vector<Fragment> fragments;   // by decreasing mass
+  double fragmentation = 0.0;        // F = N_fragments / N_particles
   double largestMassFraction = 0.0;
-  std::vector<double> cumulativeMass;   // fraction of the mass in fragments at least as heavy as fragment k
+  std::vector<double>
+      cumulativeMass; // fraction of the mass in fragments at least as heavy as fragment k
   std::size_t cloudParticles = 0;
   double axialLength = 0.0, radialExtent = 0.0, ratio = 0.0, frontSpeed = 0.0;
 };
@@ -50,15 +52,18 @@ struct FragmentResult {
 struct EjectaStatistics {
   std::size_t count = 0;
   double mass = 0.0;
-  double meanAngle = 0.0;                // degrees, mass-weighted
-  std::vector<double> speed, massAbove;  // speeds in decreasing order; mass at or above each
+  double meanAngle = 0.0;               // degrees, mass-weighted
+  std::vector<double> speed, massAbove; // speeds in decreasing order; mass at or above each
 };
-EjectaStatistics ejectaStatistics(const std::vector<double>& positions, const std::vector<double>& radii,
-                                  const std::vector<double>& masses, const std::vector<double>& velocities,
-                                  double surfaceHeight, const double axis[2]);
+EjectaStatistics ejectaStatistics(const std::vector<double>& positions,
+                                  const std::vector<double>& radii,
+                                  const std::vector<double>& masses,
+                                  const std::vector<double>& velocities, double surfaceHeight,
+                                  const double axis[2]);
 
-FragmentResult analyseFragments(const std::vector<double>& positions, const std::vector<double>& radii,
-                                const std::vector<double>& masses, const std::vector<double>& velocities,
+FragmentResult analyseFragments(const std::vector<double>& positions,
+                                const std::vector<double>& radii, const std::vector<double>& masses,
+                                const std::vector<double>& velocities,
                                 const FragmentParams& params);
 
 } // namespace craterkit

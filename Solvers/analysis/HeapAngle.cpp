@@ -26,7 +26,8 @@ HeapAngle measureHeapAngle(const ParticleSet& s, double floor, double lo, double
   for (std::size_t i = 0; i < n; ++i)
     rho[i] = std::hypot(s.position[3 * i] - cx, s.position[3 * i + 1] - cy);
   std::vector<double> sorted = rho;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(0.99 * (n - 1)), sorted.end());
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(0.99 * (n - 1)),
+                   sorted.end());
   const double extent = sorted[static_cast<std::size_t>(0.99 * (n - 1))] + rmax;
   const double width = 2.0 * rmax;
   const int nbins = std::max(1, static_cast<int>(std::ceil(extent / width)));

@@ -10,10 +10,10 @@
 namespace craterkit {
 
 struct HeapAngle {
-  double degrees = 0.0;   // angle of repose
-  double extent = 0.0;    // radial extent of the heap, m
-  double height = 0.0;    // height of the top above the floor, m
-  int bins = 0;           // bins used in the fit
+  double degrees = 0.0; // angle of repose
+  double extent = 0.0;  // radial extent of the heap, m
+  double height = 0.0;  // height of the top above the floor, m
+  int bins = 0;         // bins used in the fit
 };
 
 HeapAngle measureHeapAngle(const ParticleSet& particles, double floorHeight, double lo = 0.25,

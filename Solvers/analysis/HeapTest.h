@@ -15,11 +15,11 @@ namespace craterkit {
 
 struct HeapTestResult {
   std::size_t particlesStart = 0, particlesHeap = 0;
-  double time = 0.0;       // s until at rest
+  double time = 0.0; // s until at rest
   double flankDegrees = 0.0;
   double coneDegrees = 0.0;
-  double height = 0.0;     // m, top of the heap above the base
-  double base = 0.0;       // m, base radius
+  double height = 0.0; // m, top of the heap above the base
+  double base = 0.0;   // m, base radius
 };
 
 // contact: the model under test (k_N and Δt are chosen here); baseInRadii: base radius in

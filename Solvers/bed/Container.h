@@ -15,8 +15,8 @@ struct Container {
   enum class Type { Box = 0, Bowl = 1 };
   Type type = Type::Bowl;
   std::array<double, 3> boxSize{10.0, 10.0, 5.0}; // L, W, D, m
-  double bowlRadius = 15.0;                        // m
-  double surfaceHeight = 0.0;                      // m
+  double bowlRadius = 15.0;                       // m
+  double surfaceHeight = 0.0;                     // m
 
   // Throws InputError if the container cannot hold a sphere of radius r below the surface.
   void validate(double largestRadius) const;

@@ -113,7 +113,8 @@ int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, const Container& c
         if (j == i)
           return;
         const double rj = scale * radius[j];
-        double e[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
+        double e[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1],
+                       x[3 * i + 2] - x[3 * j + 2]};
         const double dist2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
         const double contact = (ri + rj) * spacing;
         if (dist2 >= contact * contact)
@@ -238,7 +239,8 @@ ParticleSet randomBed(const GranularBedParams& p, GranularBedReport* report,
   Container c = p.container;
   if (p.settle) {
     const double depth = c.surfaceHeight - c.floorHeight();
-    c.surfaceHeight += (0.64 / std::min(p.packingFraction, 0.6) - 1.0) * depth + 2.0 * p.sizes.largest();
+    c.surfaceHeight +=
+        (0.64 / std::min(p.packingFraction, 0.6) - 1.0) * depth + 2.0 * p.sizes.largest();
   }
   Random rng(p.seed);
   const double target = p.packingFraction * c.fillVolume(kWallDepletion * p.sizes.moment(1));
@@ -264,7 +266,8 @@ ParticleSet randomBed(const GranularBedParams& p, GranularBedReport* report,
     out.add(x, r, p.particleDensity, p.material, next++);
   }
   const double placeShare = p.settle ? 0.2 : 1.0;
-  const int sweeps = relaxOverlaps(out, p, c, p.sizes.largest(), true, subRange(progress, 0.0, placeShare));
+  const int sweeps =
+      relaxOverlaps(out, p, c, p.sizes.largest(), true, subRange(progress, 0.0, placeShare));
   if (report)
     report->relaxationIterations = sweeps;
   if (!p.settle)

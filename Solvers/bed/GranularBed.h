@@ -30,16 +30,16 @@ struct GranularBedParams {
   Packing packing = Packing::RCP;
   Container container;
   SizeDistribution sizes;
-  double packingFraction = 0.56; // RCP target over the whole fill volume
+  double packingFraction = 0.56;   // RCP target over the whole fill volume
   double particleDensity = 2000.0; // kg/m^3 (grain density = bulk density / packing)
   int material = 0;
   std::uint64_t seed = 1;
   std::int64_t maxParticles = 2000000;
   int maxRelaxationIterations = 20000;
-  bool settle = true;             // RCP: settle under gravity with the DEM
-  double settlingGravity = 9.81;  // m/s^2
-  double settlingFriction = 0.1;  // mu_s while settling (0 gives the densest packing)
-  double settledEnergy = 1e-5;    // stop when E_kin < this x N m g r (mean values, kept part)
+  bool settle = true;            // RCP: settle under gravity with the DEM
+  double settlingGravity = 9.81; // m/s^2
+  double settlingFriction = 0.1; // mu_s while settling (0 gives the densest packing)
+  double settledEnergy = 1e-5;   // stop when E_kin < this x N m g r (mean values, kept part)
 
   void validate() const; // throws InputError naming the bad parameter
   static std::string packingName(Packing p) { return p == Packing::RCP ? "RCP" : "HCP"; }
@@ -56,7 +56,8 @@ struct GranularBedReport {
 };
 
 // Builds the bed. Throws InputError on bad parameters, Aborted if progress says stop.
-ParticleSet generateGranularBed(const GranularBedParams& params, GranularBedReport* report = nullptr,
+ParticleSet generateGranularBed(const GranularBedParams& params,
+                                GranularBedReport* report = nullptr,
                                 const ProgressCallback& progress = {});
 
 // Volume fraction occupied by spheres inside the container region at least `margin` from

@@ -32,8 +32,8 @@ void SizeDistribution::validate() const {
     throw InputError(msg.str());
   }
   if (!std::isfinite(maxRadius) || maxRadius < minRadius) {
-    msg << "MaxRadius (" << maxRadius << " m) must be finite and not below MinRadius ("
-        << minRadius << " m)";
+    msg << "MaxRadius (" << maxRadius << " m) must be finite and not below MinRadius (" << minRadius
+        << " m)";
     throw InputError(msg.str());
   }
   if (type == Type::PowerLaw && (!std::isfinite(exponent) || exponent <= 0.0)) {
@@ -76,8 +76,8 @@ double SizeDistribution::moment(int k) const {
     const double q = exponent;
     const double norm = (std::pow(a, -q) - std::pow(b, -q)) / q;
     const double p = k - q;
-    const double num = std::abs(p) < 1e-12 ? std::log(b / a)
-                                           : (std::pow(b, p) - std::pow(a, p)) / p;
+    const double num =
+        std::abs(p) < 1e-12 ? std::log(b / a) : (std::pow(b, p) - std::pow(a, p)) / p;
     return num / norm;
   }
   }

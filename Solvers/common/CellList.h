@@ -22,7 +22,8 @@ public:
   void build(const double* points, std::size_t n, double cellSize);
 
   // Calls visit(j) for every point j in the cells overlapping [x - reach, x + reach].
-  template <class Visit> void forEachCandidate(const double x[3], double reach, Visit&& visit) const {
+  template <class Visit>
+  void forEachCandidate(const double x[3], double reach, Visit&& visit) const {
     if (count_ == 0)
       return;
     std::array<long, 3> lo{}, hi{};

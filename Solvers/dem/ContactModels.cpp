@@ -2,7 +2,6 @@
 
 #include "../common/Error.h"
 
-
 #include <sstream>
 
 namespace craterkit {

@@ -2,7 +2,8 @@
 //
 // Normal laws (chosen at run time by name):
 //   LinearSpringDashpot  F_N = -k_N x n + C_N u_n, C_N from the normal restitution
-//                        (Schwartz, Richardson & Michel 2012, Granular Matter 14:363, Eqs. 3, 15-16).
+//                        (Schwartz, Richardson & Michel 2012, Granular Matter 14:363, Eqs. 3,
+//                        15-16).
 //   Hertz                F_N = -(4/3) E* sqrt(r x) x n + C u_n with C from the restitution as in
 //                        Tsuji et al. 1992 (the form LIGGGHTS' hertz model uses).
 // Friction (Schwartz et al. 2012 Eqs. 6-7, 17-19; rolling and twisting spring-dashpot-slider
@@ -22,17 +23,17 @@ namespace craterkit {
 
 struct ContactParams {
   std::string normalModel = "LinearSpringDashpot"; // or "Hertz"
-  double kN = 1.0e6;         // normal stiffness, N/m (linear law)
-  double kT = -1.0;          // tangential stiffness, N/m; < 0 means 2/7 k_N (pkdgrav default)
+  double kN = 1.0e6;                               // normal stiffness, N/m (linear law)
+  double kT = -1.0;           // tangential stiffness, N/m; < 0 means 2/7 k_N (pkdgrav default)
   double restitutionN = 0.55; // normal coefficient of restitution ε_n
   double restitutionT = 0.55; // tangential ε_t (sets C_T)
-  double muS = 0.6;          // static (sliding) friction
+  double muS = 0.6;           // static (sliding) friction
   // μ_r and μ_t are calibrated so that, with μ_s = 0.6 and β = 0.5, a heap's angle of repose
   // is 30° (the friction angle of the SCI study's regolith; benchmarks/README.md).
-  double muR = 0.6;          // rolling friction
-  double muT = 0.75;         // twisting friction
-  double beta = 0.5;         // shape parameter (contact size relative to the reduced radius)
-  double cohesion = 0.0;     // Pa; attractive normal force c 4 (beta r)^2 per contact
+  double muR = 0.6;             // rolling friction
+  double muT = 0.75;            // twisting friction
+  double beta = 0.5;            // shape parameter (contact size relative to the reduced radius)
+  double cohesion = 0.0;        // Pa; attractive normal force c 4 (beta r)^2 per contact
   double youngsModulus = 1.0e8; // Pa (Hertz)
   double poissonRatio = 0.25;   // (Hertz)
 
@@ -54,10 +55,10 @@ inline double dashpotCoefficient(double k, double restitution, double reducedMas
 
 // History of one contact, carried in the contact frame between steps.
 struct ContactHistory {
-  double spring[3] = {0, 0, 0};   // tangential spring S
-  double rolling[3] = {0, 0, 0};  // rolling displacement ξ_R
-  double twisting = 0.0;          // twisting angle ξ_Q
-  double normal[3] = {0, 0, 0};   // contact normal at the previous step (0 = new contact)
+  double spring[3] = {0, 0, 0};  // tangential spring S
+  double rolling[3] = {0, 0, 0}; // rolling displacement ξ_R
+  double twisting = 0.0;         // twisting angle ξ_Q
+  double normal[3] = {0, 0, 0};  // contact normal at the previous step (0 = new contact)
   void clear() { *this = ContactHistory{}; }
   bool fresh() const { return normal[0] == 0.0 && normal[1] == 0.0 && normal[2] == 0.0; }
 };
@@ -101,9 +102,13 @@ struct Hertz {
   Hertz(double modulus, double restitution)
       : effectiveModulus(modulus), factor(std::sqrt(5.0 / 6.0) * dashpotFactor(restitution)) {}
   double effectiveModulus, factor;
-  double elastic(double x, double r) const { return 4.0 / 3.0 * effectiveModulus * std::sqrt(r * x) * x; }
+  double elastic(double x, double r) const {
+    return 4.0 / 3.0 * effectiveModulus * std::sqrt(r * x) * x;
+  }
   double stiffness(double x, double r) const { return 2.0 * effectiveModulus * std::sqrt(r * x); }
-  double damping(double x, double r, double mu) const { return factor * std::sqrt(stiffness(x, r) * mu); }
+  double damping(double x, double r, double mu) const {
+    return factor * std::sqrt(stiffness(x, r) * mu);
+  }
   double energy(double x, double r) const {
     return 8.0 / 15.0 * effectiveModulus * std::sqrt(r) * std::pow(x, 2.5);
   }
@@ -114,8 +119,9 @@ struct Hertz {
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-inline void carryContactFrame(ContactHistory& h, const Eigen::Vector3d& n, const Eigen::Vector3d& omegaSum,
-                       double dt) {
+inline void
+carryContactFrame(ContactHistory& h, const Eigen::Vector3d& n, const Eigen::Vector3d& omegaSum,
+                  double dt) {
   const Eigen::Vector3d nOld(h.normal[0], h.normal[1], h.normal[2]);
   Eigen::Map<Eigen::Vector3d> S(h.spring), xi(h.rolling);
   // (a) spin about the mean normal by φ = dt/2 (ω_p + ω_n)·n_mean. Cayley form with
@@ -148,11 +154,11 @@ inline void carryContactFrame(ContactHistory& h, const Eigen::Vector3d& n, const
   xi -= xi.dot(n) * n;
 }
 
-
 // Constants of the friction part, computed once per force evaluation.
 struct FrictionConstants {
   explicit FrictionConstants(const ContactParams& p)
-      : kT(p.tangentialStiffness()), dampingT(dashpotFactor(p.restitutionT)), sqrtKT(std::sqrt(kT)) {}
+      : kT(p.tangentialStiffness()), dampingT(dashpotFactor(p.restitutionT)),
+        sqrtKT(std::sqrt(kT)) {}
   double kT, dampingT, sqrtKT;
 };
 
@@ -161,8 +167,9 @@ template <class Normal>
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-inline ContactResult ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants& fc,
-                           const ContactState& c, ContactHistory& h, double dt) {
+inline ContactResult
+ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants& fc,
+             const ContactState& c, ContactHistory& h, double dt) {
   const double kT = fc.kT;
   ContactResult out;
   const Eigen::Vector3d& n = c.n;

@@ -23,7 +23,8 @@ void DemRun::keep() {
 const DemSolver& DemRun::advanceTo(double time, const ProgressCallback& progress,
                                    const std::string& checkpointPath, long long checkpointEvery) {
   const double dt = params_.dt;
-  const long long target = std::max(0LL, static_cast<long long>(std::ceil((time - startTime_) / dt - 1e-9)));
+  const long long target =
+      std::max(0LL, static_cast<long long>(std::ceil((time - startTime_) / dt - 1e-9)));
   if (target < solver_->stepCount()) {
     auto it = kept_.upper_bound(target);
     if (it == kept_.begin()) {
@@ -37,7 +38,8 @@ const DemSolver& DemRun::advanceTo(double time, const ProgressCallback& progress
   if (target > solver_->stepCount()) {
     const long long start = solver_->stepCount();
     // Behind the checkpoint file's state: no checkpoint until it is passed.
-    const long long quiet = checkpointPath.empty() ? start : std::min(target, std::max(start, checkpointStep_));
+    const long long quiet =
+        checkpointPath.empty() ? start : std::min(target, std::max(start, checkpointStep_));
     const auto part = [&](long long from, long long to) -> ProgressCallback {
       if (!progress)
         return {};
@@ -49,11 +51,12 @@ const DemSolver& DemRun::advanceTo(double time, const ProgressCallback& progress
     if (quiet > start)
       solver_->advanceTo(static_cast<double>(quiet) * dt, part(start, quiet));
     if (target > solver_->stepCount())
-      solver_->advanceTo(static_cast<double>(target) * dt, part(solver_->stepCount(), target), checkpointPath,
-                         checkpointEvery);
+      solver_->advanceTo(static_cast<double>(target) * dt, part(solver_->stepCount(), target),
+                         checkpointPath, checkpointEvery);
     while (solver_->stepCount() < target) // advanceTo rounds to whole steps
       solver_->step();
-    if (!checkpointPath.empty() && (checkpointEvery <= 0 || solver_->stepCount() % checkpointEvery != 0) &&
+    if (!checkpointPath.empty() &&
+        (checkpointEvery <= 0 || solver_->stepCount() % checkpointEvery != 0) &&
         solver_->stepCount() > checkpointStep_)
       solver_->writeCheckpoint(checkpointPath); // every requested state is recoverable
     if (!checkpointPath.empty())

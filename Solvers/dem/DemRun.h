@@ -31,7 +31,9 @@ public:
   void resumeFrom(const std::string& checkpointPath);
   // Simulation time of the furthest state written to or resumed from the checkpoint file
   // (negative if none).
-  double checkpointTime() const { return checkpointStep_ < 0 ? -1.0 : startTime_ + checkpointStep_ * params_.dt; }
+  double checkpointTime() const {
+    return checkpointStep_ < 0 ? -1.0 : startTime_ + checkpointStep_ * params_.dt;
+  }
 
   double time() const { return startTime_ + solver_->time(); }
   const DemSolver& solver() const { return *solver_; }

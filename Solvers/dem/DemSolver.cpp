@@ -24,7 +24,9 @@ constexpr std::size_t kParallelMin = 512;
 using Vec = Eigen::Vector3d;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-inline Vec at(const std::vector<double>& a, std::size_t i) { return Vec(a[3 * i], a[3 * i + 1], a[3 * i + 2]); }
+inline Vec at(const std::vector<double>& a, std::size_t i) {
+  return Vec(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
+}
 inline void put(std::vector<double>& a, std::size_t i, const Vec& v) {
   a[3 * i] = v[0];
   a[3 * i + 1] = v[1];
@@ -32,10 +34,11 @@ inline void put(std::vector<double>& a, std::size_t i, const Vec& v) {
 }
 
 // Walks two pair lists sorted by (i, j) and calls same(a, b) for each pair in both.
-template <class Same>
-std::size_t forCommonPairs(const std::vector<std::uint32_t>& ai, const std::vector<std::uint32_t>& aj,
-                           const std::vector<std::uint32_t>& bi, const std::vector<std::uint32_t>& bj,
-                           Same&& same) {
+template <class Same> std::size_t forCommonPairs(const std::vector<std::uint32_t>& ai,
+                                                 const std::vector<std::uint32_t>& aj,
+                                                 const std::vector<std::uint32_t>& bi,
+                                                 const std::vector<std::uint32_t>& bj,
+                                                 Same&& same) {
   std::size_t found = 0;
   for (std::size_t a = 0, b = 0; a < ai.size() && b < bi.size();) {
     const auto ka = (static_cast<std::uint64_t>(ai[a]) << 32) | aj[a];
@@ -176,8 +179,8 @@ void DemSolver::checkInput() const {
     std::ostringstream msg;
     msg << "bad particles in the DEM input: " << badPos << " with NaN or infinite positions, "
         << badVel << " with NaN or infinite velocities or spins, " << badRadius
-        << " with non-positive radii, " << badMass << " with non-positive masses (first: "
-        << describe(s, first) << ")";
+        << " with non-positive radii, " << badMass
+        << " with non-positive masses (first: " << describe(s, first) << ")";
     throw InputError(msg.str());
   }
 }
@@ -206,16 +209,18 @@ void DemSolver::initialise(bool computeInitialForces) {
   const double mmin = *std::min_element(s.mass.begin(), s.mass.end());
   double k = params_.contact.kN;
   if (params_.contact.normalModel == "Hertz") {
-    const double E = params_.contact.youngsModulus / (1.0 - std::pow(params_.contact.poissonRatio, 2));
+    const double E =
+        params_.contact.youngsModulus / (1.0 - std::pow(params_.contact.poissonRatio, 2));
     k = 2.0 * E * std::sqrt(rmin * 0.01 * rmin); // wall stiffness at 1 % overlap
   }
   collisionTime_ = M_PI * std::sqrt(0.5 * mmin / k);
   const double steps = collisionTime_ / params_.dt;
   if (steps < params_.minStepsPerCollision) {
     std::ostringstream msg;
-    msg << "TimeStep " << params_.dt << " s is above the stability limit: the shortest contact lasts "
-        << collisionTime_ << " s, only " << steps << " steps; use at most "
-        << collisionTime_ / 30.0 << " s (30 steps per contact)";
+    msg << "TimeStep " << params_.dt
+        << " s is above the stability limit: the shortest contact lasts " << collisionTime_
+        << " s, only " << steps << " steps; use at most " << collisionTime_ / 30.0
+        << " s (30 steps per contact)";
     throw InputError(msg.str());
   }
   if (steps < params_.warnStepsPerCollision) {
@@ -323,7 +328,8 @@ void DemSolver::buildNeighbourList() {
   auto forEachNeighbour = [&](std::size_t i, auto&& f) {
     auto test = [&](std::size_t j) {
       const double reach = r[i] + r[j] + skin_;
-      const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1], d2 = x[3 * j + 2] - x[3 * i + 2];
+      const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1],
+                   d2 = x[3 * j + 2] - x[3 * i + 2];
       if (d0 * d0 + d1 * d1 + d2 * d2 < reach * reach)
         f(j);
     };
@@ -363,7 +369,8 @@ void DemSolver::buildNeighbourList() {
       forEachNeighbour(i, [&](std::size_t j) { buffer.push_back(static_cast<std::uint32_t>(j)); });
       std::sort(buffer.begin(), buffer.end());
       std::copy(buffer.begin(), buffer.end(), newJ.begin() + start[i]);
-      std::fill(newI.begin() + start[i], newI.begin() + start[i + 1], static_cast<std::uint32_t>(i));
+      std::fill(newI.begin() + start[i], newI.begin() + start[i + 1],
+                static_cast<std::uint32_t>(i));
     }
   }
   // Carry histories of pairs that stay in the list (both lists sorted by (i, j)).
@@ -426,7 +433,8 @@ void DemSolver::computeForces(double kick) {
 
 // Forces and torques at the current positions; with kick > 0 the closing half-kick of the
 // step (v += kick a) is applied in the same pass, while the accelerations are in registers.
-template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const Law& wallLaw, double kick) {
+template <class Law>
+void DemSolver::computeForcesWith(const Law& pairLaw, const Law& wallLaw, double kick) {
   const ContactParams& cp = params_.contact;
   const FrictionConstants fc(cp);
   const double dt = params_.dt;
@@ -535,7 +543,8 @@ template <class Law> void DemSolver::computeForcesWith(const Law& pairLaw, const
   worstOverlap_ = worst;
 }
 
-template <class Law> double DemSolver::elasticEnergyWith(const Law& pairLaw, const Law& wallLaw) const {
+template <class Law>
+double DemSolver::elasticEnergyWith(const Law& pairLaw, const Law& wallLaw) const {
   const ContactParams& cp = params_.contact;
   const double kT = cp.tangentialStiffness();
   const ParticleSet& s = state_;
@@ -552,7 +561,8 @@ template <class Law> double DemSolver::elasticEnergyWith(const Law& pairLaw, con
     const double d = (at(s.position, j) - at(s.position, i)).norm();
     const double overlap = s.radius[i] + s.radius[j] - d;
     if (overlap > 0.0)
-      e += springs(pairHistory_[k], overlap, s.radius[i] * s.radius[j] / (s.radius[i] + s.radius[j]), pairLaw);
+      e += springs(pairHistory_[k], overlap,
+                   s.radius[i] * s.radius[j] / (s.radius[i] + s.radius[j]), pairLaw);
   }
   const std::size_t walls = params_.walls.size();
   for (std::size_t i = 0; i < n_; ++i)
@@ -593,8 +603,8 @@ void DemSolver::step() {
       for (int k = 0; k < 3; ++k)
         if (!std::isfinite(x[3 * i + k])) {
           std::ostringstream msg;
-          msg << "the run blew up at step " << step_ + 1 << " (t = " << time_ + dt << " s): "
-              << describe(state_, i) << " has a non-finite position; reduce TimeStep";
+          msg << "the run blew up at step " << step_ + 1 << " (t = " << time_ + dt
+              << " s): " << describe(state_, i) << " has a non-finite position; reduce TimeStep";
           throw std::runtime_error(msg.str());
         }
     buildNeighbourList();
@@ -637,7 +647,8 @@ long long DemSolver::advanceTo(double endTime, const ProgressCallback& progress,
   if (!std::isfinite(endTime))
     throw InputError("the end time must be finite");
   const double start = time_;
-  const long long total = std::max(0LL, static_cast<long long>(std::llround((endTime - start) / params_.dt)));
+  const long long total =
+      std::max(0LL, static_cast<long long>(std::llround((endTime - start) / params_.dt)));
   const long long report = std::max(1LL, total / 200);
   for (long long s = 0; s < total; ++s) {
     if (s % report == 0)
@@ -755,14 +766,17 @@ constexpr char kMagic[8] = {'C', 'K', 'D', 'E', 'M', 'C', 'P', '1'};
 
 struct Writer {
   std::ostream& out;
-  template <class T> void pod(const T& v) { out.write(reinterpret_cast<const char*>(&v), sizeof(T)); }
+  template <class T> void pod(const T& v) {
+    out.write(reinterpret_cast<const char*>(&v), sizeof(T));
+  }
   void str(const std::string& s) {
     pod<std::uint64_t>(s.size());
     out.write(s.data(), static_cast<std::streamsize>(s.size()));
   }
   template <class T> void vec(const std::vector<T>& v) {
     pod<std::uint64_t>(v.size());
-    out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+    out.write(reinterpret_cast<const char*>(v.data()),
+              static_cast<std::streamsize>(v.size() * sizeof(T)));
   }
 };
 
@@ -772,8 +786,8 @@ struct Reader {
   void need(std::uint64_t bytes, const char* what) {
     if (bytes > left) {
       std::ostringstream msg;
-      msg << "checkpoint truncated or corrupt: " << what << " needs " << bytes << " bytes, "
-          << left << " left";
+      msg << "checkpoint truncated or corrupt: " << what << " needs " << bytes << " bytes, " << left
+          << " left";
       throw InputError(msg.str());
     }
     left -= bytes;
@@ -819,8 +833,8 @@ void DemSolver::writeCheckpoint(std::ostream& out) const {
   w.pod<std::uint32_t>(1u); // endianness probe
   const ContactParams& c = params_.contact;
   w.str(c.normalModel);
-  for (double v : {c.kN, c.kT, c.restitutionN, c.restitutionT, c.muS, c.muR, c.muT, c.beta, c.cohesion,
-                   c.youngsModulus, c.poissonRatio})
+  for (double v : {c.kN, c.kT, c.restitutionN, c.restitutionT, c.muS, c.muR, c.muT, c.beta,
+                   c.cohesion, c.youngsModulus, c.poissonRatio})
     w.pod(v);
   w.pod<std::uint64_t>(params_.walls.size());
   for (const Wall& wall : params_.walls) {
@@ -833,8 +847,9 @@ void DemSolver::writeCheckpoint(std::ostream& out) const {
   w.pod(params_.gravity.vector);
   w.pod(params_.gravity.GM);
   w.pod(params_.gravity.centre);
-  for (double v : {params_.dt, params_.skin, params_.overlapWarning, params_.overlapAbort,
-                   params_.initialOverlapLimit, params_.minStepsPerCollision, params_.warnStepsPerCollision})
+  for (double v :
+       {params_.dt, params_.skin, params_.overlapWarning, params_.overlapAbort,
+        params_.initialOverlapLimit, params_.minStepsPerCollision, params_.warnStepsPerCollision})
     w.pod(v);
   w.pod<std::uint64_t>(n_);
   w.pod(time_);
@@ -949,10 +964,12 @@ DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t available) {
   r.need(sizeof(trailer), "trailer");
   in.read(trailer, sizeof(trailer));
   if (!in || std::memcmp(trailer, kMagic, sizeof(trailer)) != 0)
-    throw InputError("checkpoint incomplete (no trailer): the run was interrupted while writing it");
+    throw InputError(
+        "checkpoint incomplete (no trailer): the run was interrupted while writing it");
   for (std::size_t k = 0; k < ci.size(); ++k)
-    if (ci[k] >= cj[k] || cj[k] >= n || (k > 0 && ((static_cast<std::uint64_t>(ci[k - 1]) << 32 | cj[k - 1]) >=
-                                                    (static_cast<std::uint64_t>(ci[k]) << 32 | cj[k]))))
+    if (ci[k] >= cj[k] || cj[k] >= n ||
+        (k > 0 && ((static_cast<std::uint64_t>(ci[k - 1]) << 32 | cj[k - 1]) >=
+                   (static_cast<std::uint64_t>(ci[k]) << 32 | cj[k]))))
       throw InputError("checkpoint corrupt: contact list out of order");
 
   DemSolver solver(Restore{}, s, p);

@@ -34,8 +34,8 @@ struct Gravity {
   enum class Type { None = 0, Uniform = 1, PointMass = 2 };
   Type type = Type::Uniform;
   std::array<double, 3> vector{0.0, 0.0, -9.81}; // m/s^2 (Uniform)
-  double GM = 0.0;                                // m^3/s^2 (PointMass)
-  std::array<double, 3> centre{0.0, 0.0, 0.0};    // m (PointMass)
+  double GM = 0.0;                               // m^3/s^2 (PointMass)
+  std::array<double, 3> centre{0.0, 0.0, 0.0};   // m (PointMass)
 
   void acceleration(const double x[3], double a[3]) const;
   double potential(const double x[3]) const; // per unit mass
@@ -46,11 +46,11 @@ struct DemParams {
   ContactParams contact;
   std::vector<Wall> walls;
   Gravity gravity;
-  double dt = 0.0;                   // s
-  double skin = -1.0;                // Verlet skin, m; < 0 means 0.2 x smallest radius
-  double overlapWarning = 0.01;      // warn above this overlap / smaller radius
-  double overlapAbort = 0.5;         // stop the run above this (pkdgrav's limit)
-  double initialOverlapLimit = 0.05; // refuse inputs overlapping more than this
+  double dt = 0.0;                    // s
+  double skin = -1.0;                 // Verlet skin, m; < 0 means 0.2 x smallest radius
+  double overlapWarning = 0.01;       // warn above this overlap / smaller radius
+  double overlapAbort = 0.5;          // stop the run above this (pkdgrav's limit)
+  double initialOverlapLimit = 0.05;  // refuse inputs overlapping more than this
   double minStepsPerCollision = 10.0; // refuse Δt above τ / this (unstable)
   double warnStepsPerCollision = 20.0;
   void validate() const;
@@ -59,17 +59,17 @@ struct DemParams {
 struct DemDiagnostics {
   double time = 0.0;
   long long step = 0;
-  double kineticEnergy = 0.0;      // translational, J
-  double rotationalEnergy = 0.0;   // J
-  double elasticEnergy = 0.0;      // springs of all active contacts, J
+  double kineticEnergy = 0.0;       // translational, J
+  double rotationalEnergy = 0.0;    // J
+  double elasticEnergy = 0.0;       // springs of all active contacts, J
   double gravitationalEnergy = 0.0; // J
   double totalEnergy() const {
     return kineticEnergy + rotationalEnergy + elasticEnergy + gravitationalEnergy;
   }
   Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
   Eigen::Vector3d angularMomentum = Eigen::Vector3d::Zero(); // about the origin, incl. spins
-  double maxOverlap = 0.0;   // largest overlap / smaller radius
-  std::size_t contacts = 0;  // particle-particle
+  double maxOverlap = 0.0;                                   // largest overlap / smaller radius
+  std::size_t contacts = 0;                                  // particle-particle
   std::size_t wallContacts = 0;
   double maxSpeed = 0.0;
 };
@@ -132,7 +132,7 @@ private:
   std::vector<double> pairForce_, pairTorqueI_, pairTorqueJ_;
   std::vector<std::size_t> firstStart_, secondStart_, secondPair_;
   std::vector<ContactHistory> wallHistory_; // n_ x walls
-  std::vector<std::uint64_t> wallNear_;      // per particle: walls within r + skin at the last build
+  std::vector<std::uint64_t> wallNear_;     // per particle: walls within r + skin at the last build
   std::vector<char> wallActive_;
 
   double worstOverlap_ = 0.0;

@@ -22,7 +22,8 @@ struct Wall {
   double radius = 0.0;                   // disk, bowl and cylinder
 
   static Wall plane(std::array<double, 3> point, std::array<double, 3> normal);
-  static Wall bowl(std::array<double, 3> centre, double radius, std::array<double, 3> up = {0, 0, 1});
+  static Wall bowl(std::array<double, 3> centre, double radius,
+                   std::array<double, 3> up = {0, 0, 1});
   static Wall cylinder(std::array<double, 3> axisPoint, std::array<double, 3> axis, double radius);
   static Wall disk(std::array<double, 3> centre, std::array<double, 3> normal, double radius);
 

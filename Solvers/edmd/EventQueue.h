@@ -97,10 +97,13 @@ public:
       if ((b.open < 0) != (b.fill == 0) || b.fill > kChunk)
         return -1;
       std::uint32_t fill = b.fill;
-      for (std::int32_t k = b.open; k >= 0; k = chunks_[static_cast<std::size_t>(k)].next, fill = kChunk)
+      for (std::int32_t k = b.open; k >= 0;
+           k = chunks_[static_cast<std::size_t>(k)].next, fill = kChunk)
         for (std::uint32_t e = 0; e < fill; ++e) {
-          const std::int64_t bucket = bucketOf(chunks_[static_cast<std::size_t>(k)].items[e].event.t);
-          if (slotOf(bucket) != slot || bucket <= current_ || bucket >= current_ + static_cast<std::int64_t>(buckets_))
+          const std::int64_t bucket =
+              bucketOf(chunks_[static_cast<std::size_t>(k)].items[e].event.t);
+          if (slotOf(bucket) != slot || bucket <= current_ ||
+              bucket >= current_ + static_cast<std::int64_t>(buckets_))
             return -1;
           ++listed;
         }
@@ -124,8 +127,10 @@ public:
 
 private:
   static constexpr double kInf = std::numeric_limits<double>::infinity();
-  static constexpr std::uint32_t kChunk = 7; // events per chunk: 7 x 32 bytes + the link, 4 cache lines
-  static constexpr std::size_t kManyDisks = 32768; // from this many disks, kChunk times fewer buckets
+  static constexpr std::uint32_t kChunk =
+      7; // events per chunk: 7 x 32 bytes + the link, 4 cache lines
+  static constexpr std::size_t kManyDisks =
+      32768; // from this many disks, kChunk times fewer buckets
 
   // The current bucket is used up: move on to the next one with events (out of line, so that
   // top() stays small enough to inline).
@@ -190,7 +195,8 @@ private:
     return b > 4e18 ? std::numeric_limits<std::int64_t>::max() / 2 : static_cast<std::int64_t>(b);
   }
   std::size_t slotOf(std::int64_t b) const {
-    return static_cast<std::size_t>(b & static_cast<std::int64_t>(buckets_ - 1)); // buckets_ is a power of 2
+    return static_cast<std::size_t>(
+        b & static_cast<std::int64_t>(buckets_ - 1)); // buckets_ is a power of 2
   }
 
   template <class F> void forEachValid(F&& f) const {
@@ -199,7 +205,8 @@ private:
         f(it);
     for (const Bucket& b : table_) {
       std::uint32_t fill = b.fill;
-      for (std::int32_t k = b.open; k >= 0; k = chunks_[static_cast<std::size_t>(k)].next, fill = kChunk)
+      for (std::int32_t k = b.open; k >= 0;
+           k = chunks_[static_cast<std::size_t>(k)].next, fill = kChunk)
         for (std::uint32_t e = 0; e < fill; ++e)
           if (valid(chunks_[static_cast<std::size_t>(k)].items[e]))
             f(chunks_[static_cast<std::size_t>(k)].items[e]);
@@ -301,7 +308,7 @@ private:
   };
   std::vector<Bucket> table_;
   std::vector<Chunk> chunks_;
-  std::int32_t free_ = -1; // free chunks, most recently freed first
+  std::int32_t free_ = -1;    // free chunks, most recently freed first
   std::vector<Item> waiting_; // beyond the ring
   std::vector<Item> heap_;
 };

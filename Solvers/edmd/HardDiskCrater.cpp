@@ -12,7 +12,8 @@ namespace craterkit {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kJamming = 0.82; // above this, monodisperse and narrow-range disks jam or crystallise
+constexpr double kJamming =
+    0.82; // above this, monodisperse and narrow-range disks jam or crystallise
 
 std::string num(double v) {
   std::ostringstream s;
@@ -29,33 +30,49 @@ void require(bool ok, const std::string& message) {
 void HardDiskCraterParams::validate() const {
   auto finite = [](double v) { return std::isfinite(v); };
   require(finite(width) && width > 0.0, "Width must be positive (got " + num(width) + ")");
-  require(finite(groundDepth) && groundDepth > 0.0, "GroundDepth must be positive (got " + num(groundDepth) + ")");
-  require(finite(diskRadius) && diskRadius > 0.0, "DiskRadius must be positive (got " + num(diskRadius) + ")");
+  require(finite(groundDepth) && groundDepth > 0.0,
+          "GroundDepth must be positive (got " + num(groundDepth) + ")");
+  require(finite(diskRadius) && diskRadius > 0.0,
+          "DiskRadius must be positive (got " + num(diskRadius) + ")");
   require(finite(maxDiskRadius) && (maxDiskRadius == 0.0 || maxDiskRadius >= diskRadius),
-          "MaxDiskRadius must be 0 (one size) or at least DiskRadius (got " + num(maxDiskRadius) + ")");
+          "MaxDiskRadius must be 0 (one size) or at least DiskRadius (got " + num(maxDiskRadius) +
+              ")");
   const double rmax = std::max(diskRadius, maxDiskRadius);
   require(2.0 * rmax < width && 2.0 * rmax < groundDepth,
           "a disk (diameter " + num(2.0 * rmax) + " m) is larger than the box or the ground layer");
-  require(finite(areaFraction) && areaFraction > 0.0, "AreaFraction must be positive (got " + num(areaFraction) + ")");
-  require(areaFraction <= kJamming, "AreaFraction " + num(areaFraction) + " is above the jamming limit of random disk packings (" +
+  require(finite(areaFraction) && areaFraction > 0.0,
+          "AreaFraction must be positive (got " + num(areaFraction) + ")");
+  require(areaFraction <= kJamming, "AreaFraction " + num(areaFraction) +
+                                        " is above the jamming limit of random disk packings (" +
                                         num(kJamming) + ")");
-  require(finite(groundDensity) && groundDensity > 0.0, "GroundDensity must be positive (got " + num(groundDensity) + ")");
-  require(finite(impactorRadius) && impactorRadius > 0.0, "ImpactorRadius must be positive (got " + num(impactorRadius) + ")");
+  require(finite(groundDensity) && groundDensity > 0.0,
+          "GroundDensity must be positive (got " + num(groundDensity) + ")");
+  require(finite(impactorRadius) && impactorRadius > 0.0,
+          "ImpactorRadius must be positive (got " + num(impactorRadius) + ")");
   require(impactor != Impactor::Clump || impactorRadius >= diskRadius,
           "a clump impactor must be at least one disk radius wide");
-  require(finite(densityRatio) && densityRatio > 0.0, "DensityRatio must be positive (got " + num(densityRatio) + ")");
-  require(finite(impactSpeed) && impactSpeed >= 0.0, "ImpactSpeed must be zero or positive (got " + num(impactSpeed) + ")");
+  require(finite(densityRatio) && densityRatio > 0.0,
+          "DensityRatio must be positive (got " + num(densityRatio) + ")");
+  require(finite(impactSpeed) && impactSpeed >= 0.0,
+          "ImpactSpeed must be zero or positive (got " + num(impactSpeed) + ")");
   require(finite(impactAngle) && impactAngle >= 0.0 && impactAngle < 90.0,
-          "ImpactAngle must be in [0, 90) degrees from the vertical (got " + num(impactAngle) + ")");
+          "ImpactAngle must be in [0, 90) degrees from the vertical (got " + num(impactAngle) +
+              ")");
   require(finite(headroom) && headroom >= 2.0 * impactorRadius + rmax,
-          "Headroom must fit the impactor above the ground (at least " + num(2.0 * impactorRadius + rmax) + " m)");
-  require(0.5 * width - (impactorRadius + 0.5 * diskRadius) * std::tan(impactAngle * kPi / 180.0) >= impactorRadius,
-          "the impactor starts outside the box at this ImpactAngle: widen the box or lower the angle");
+          "Headroom must fit the impactor above the ground (at least " +
+              num(2.0 * impactorRadius + rmax) + " m)");
+  require(
+      0.5 * width - (impactorRadius + 0.5 * diskRadius) * std::tan(impactAngle * kPi / 180.0) >=
+          impactorRadius,
+      "the impactor starts outside the box at this ImpactAngle: widen the box or lower the angle");
   require(finite(restitution) && restitution > 0.0 && restitution <= 1.0,
           "Restitution must be in (0, 1] (got " + num(restitution) + ")");
-  require(finite(gravity) && gravity >= 0.0, "Gravity must be zero or positive (got " + num(gravity) + ")");
-  require(finite(frameInterval) && frameInterval > 0.0, "FrameInterval must be positive (got " + num(frameInterval) + ")");
-  require(finite(endTime) && endTime >= 0.0, "EndTime must be zero or positive (got " + num(endTime) + ")");
+  require(finite(gravity) && gravity >= 0.0,
+          "Gravity must be zero or positive (got " + num(gravity) + ")");
+  require(finite(frameInterval) && frameInterval > 0.0,
+          "FrameInterval must be positive (got " + num(frameInterval) + ")");
+  require(finite(endTime) && endTime >= 0.0,
+          "EndTime must be zero or positive (got " + num(endTime) + ")");
   require(endTime / frameInterval <= 1e5, "more than 100000 frames: raise FrameInterval");
   require(finite(tracerFraction) && tracerFraction >= 0.0 && tracerFraction <= 1.0,
           "TracerFraction must be in [0, 1] (got " + num(tracerFraction) + ")");
@@ -64,7 +81,9 @@ void HardDiskCraterParams::validate() const {
           "the ground would need more than 2e7 disks: raise DiskRadius or shrink the box");
 }
 
-std::vector<std::string> HardDiskCraterParams::presetNames() { return {"Ball pit", "Dense sand", "Clump impactor"}; }
+std::vector<std::string> HardDiskCraterParams::presetNames() {
+  return {"Ball pit", "Dense sand", "Clump impactor"};
+}
 
 HardDiskCraterParams HardDiskCraterParams::preset(const std::string& name) {
   HardDiskCraterParams p;
@@ -134,7 +153,8 @@ HardDisks generateHardDiskGround(const HardDiskCraterParams& p, const ProgressCa
       }
     }
     if (!placed)
-      throw InputError("random placement failed at area fraction " + num(phi0) + ": enlarge the box");
+      throw InputError("random placement failed at area fraction " + num(phi0) +
+                       ": enlarge the box");
     if (k % 4096 == 0)
       reportProgress(progress, 0.2 * k / radii.size());
   }
@@ -160,7 +180,8 @@ HardDisks generateHardDiskGround(const HardDiskCraterParams& p, const ProgressCa
       if (ke > 0.0)
         sys.scaleVelocities(std::sqrt(0.5 / ke));
       if (sys.pairCollisions() > 20000 * g.size())
-        throw InputError("the compression to area fraction " + num(phi) + " stalled (the disks jammed): lower AreaFraction");
+        throw InputError("the compression to area fraction " + num(phi) +
+                         " stalled (the disks jammed): lower AreaFraction");
       reportProgress(progress, 0.2 + 0.8 * c / chunks);
     }
     g = sys.disks();
@@ -173,7 +194,9 @@ HardDisks generateHardDiskGround(const HardDiskCraterParams& p, const ProgressCa
   return g;
 }
 
-HardDiskCraterRun::HardDiskCraterRun(const HardDiskCraterParams& p, const ProgressCallback& progress) : p_(p) {
+HardDiskCraterRun::HardDiskCraterRun(const HardDiskCraterParams& p,
+                                     const ProgressCallback& progress)
+    : p_(p) {
   HardDisks d = generateHardDiskGround(p_, progress);
   const std::size_t ground = d.size();
   const double rmin = p_.diskRadius, R = p_.impactorRadius;
@@ -196,7 +219,8 @@ HardDiskCraterRun::HardDiskCraterRun(const HardDiskCraterParams& p, const Progre
       for (int col = -cols; col <= cols; ++col) {
         const double x = col * s + shift;
         if (x * x + y * y <= reach * reach + 1e-12)
-          d.add(cx + x, cy + y, vx, vy, rmin, rhoI * kPi * rmin * rmin, kImpactor, static_cast<std::int64_t>(d.size()));
+          d.add(cx + x, cy + y, vx, vy, rmin, rhoI * kPi * rmin * rmin, kImpactor,
+                static_cast<std::int64_t>(d.size()));
       }
     }
   }
@@ -221,21 +245,26 @@ HardDiskCraterRun::HardDiskCraterRun(const HardDiskCraterParams& p, const Progre
   recordFrame();
 }
 
-double HardDiskCraterRun::frameTime(std::size_t k) const { return static_cast<double>(k) * p_.frameInterval; }
+double HardDiskCraterRun::frameTime(std::size_t k) const {
+  return static_cast<double>(k) * p_.frameInterval;
+}
 
 void HardDiskCraterRun::advanceToFrame(std::size_t k, const ProgressCallback& progress) {
   if (k >= frames_)
-    throw InputError("frame " + std::to_string(k) + " is beyond the last frame (" + std::to_string(frames_ - 1) + ")");
+    throw InputError("frame " + std::to_string(k) + " is beyond the last frame (" +
+                     std::to_string(frames_ - 1) + ")");
   if (k < current_)
     throw InputError("a hard-disk run only goes forwards: start a new run for an earlier frame");
   const std::size_t first = current_;
   while (current_ < k) {
     const double done = static_cast<double>(current_ - first) / static_cast<double>(k - first);
     const double share = 1.0 / static_cast<double>(k - first);
-    system_->advanceTo(frameTime(current_ + 1), [&](double f) { return !progress || progress(done + share * f); });
+    system_->advanceTo(frameTime(current_ + 1),
+                       [&](double f) { return !progress || progress(done + share * f); });
     ++current_;
     recordFrame();
-    reportProgress(progress, static_cast<double>(current_ - first) / static_cast<double>(k - first));
+    reportProgress(progress,
+                   static_cast<double>(current_ - first) / static_cast<double>(k - first));
   }
 }
 

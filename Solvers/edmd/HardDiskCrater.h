@@ -18,12 +18,12 @@ namespace craterkit {
 
 struct HardDiskCraterParams {
   // Box and ground.
-  double width = 1.0;        // m
-  double groundDepth = 0.5;  // m
-  double headroom = 0.5;     // m of empty box above the ground
-  double diskRadius = 0.005; // m (smallest ground disk)
-  double maxDiskRadius = 0.0; // m; 0 or equal to diskRadius: one size; else uniform in radius
-  double areaFraction = 0.70; // of the ground layer
+  double width = 1.0;            // m
+  double groundDepth = 0.5;      // m
+  double headroom = 0.5;         // m of empty box above the ground
+  double diskRadius = 0.005;     // m (smallest ground disk)
+  double maxDiskRadius = 0.0;    // m; 0 or equal to diskRadius: one size; else uniform in radius
+  double areaFraction = 0.70;    // of the ground layer
   double groundDensity = 1000.0; // kg/m³
   // Impactor.
   enum class Impactor { Disk, Clump } impactor = Impactor::Disk;
@@ -33,10 +33,10 @@ struct HardDiskCraterParams {
   double impactAngle = 0.0;     // degrees from the vertical
   // Physics.
   double restitution = 1.0;
-  double gravity = 0.0;         // m/s²
+  double gravity = 0.0; // m/s²
   // Output.
-  double frameInterval = 1e-3;  // s
-  double endTime = 0.1;         // s
+  double frameInterval = 1e-3; // s
+  double endTime = 0.1;        // s
   double tracerFraction = 0.02;
   std::uint64_t seed = 1;
 
@@ -50,7 +50,8 @@ enum HardDiskMaterial { kGround = 0, kImpactor = 1 };
 
 // Random ground at the requested area fraction: random sequential addition up to 0.40,
 // then Lubachevsky–Stillinger compression (event-driven radius growth) to the target.
-HardDisks generateHardDiskGround(const HardDiskCraterParams& p, const ProgressCallback& progress = {});
+HardDisks generateHardDiskGround(const HardDiskCraterParams& p,
+                                 const ProgressCallback& progress = {});
 
 // One crater run: the system, frame bookkeeping, tracer paths and per-frame analysis.
 class HardDiskCraterRun {
@@ -72,8 +73,8 @@ public:
   const std::vector<double>& shockFront() const { return shock_; }
 
   struct Ejection {
-    double angleDeg;  // from the horizontal surface
-    double distance;  // launch distance from the impact point
+    double angleDeg; // from the horizontal surface
+    double distance; // launch distance from the impact point
     double speed;
     double time;
   };

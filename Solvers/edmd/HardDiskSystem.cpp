@@ -68,14 +68,16 @@ void HardDisks::add(double px, double py, double pvx, double pvy, double r, doub
 void HardDiskParams::validate() const {
   auto positive = [](double v, const char* name) {
     if (!(v > 0.0) || !std::isfinite(v))
-      throw InputError(std::string(name) + " must be positive and finite (got " + std::to_string(v) + ")");
+      throw InputError(std::string(name) + " must be positive and finite (got " +
+                       std::to_string(v) + ")");
   };
   positive(width, "the box width");
   positive(height, "the box height");
   if (!(restitution > 0.0 && restitution <= 1.0))
     throw InputError("Restitution must be in (0, 1] (got " + std::to_string(restitution) + ")");
   if (!(wallRestitution > 0.0 && wallRestitution <= 1.0))
-    throw InputError("the wall restitution must be in (0, 1] (got " + std::to_string(wallRestitution) + ")");
+    throw InputError("the wall restitution must be in (0, 1] (got " +
+                     std::to_string(wallRestitution) + ")");
   if (!(gravity >= 0.0) || !std::isfinite(gravity))
     throw InputError("Gravity must be zero or positive (got " + std::to_string(gravity) + ")");
   if (!(tcTime >= 0.0) || !std::isfinite(tcTime))
@@ -88,17 +90,19 @@ void HardDiskParams::validate() const {
     throw InputError("gravity along a periodic axis is not supported");
 }
 
-HardDiskSystem::HardDiskSystem(const HardDisks& disks, const HardDiskParams& params) : d_(disks), p_(params) {
+HardDiskSystem::HardDiskSystem(const HardDisks& disks, const HardDiskParams& params)
+    : d_(disks), p_(params) {
   p_.validate();
   const std::size_t n = d_.size();
   if (n == 0)
     throw InputError("no disks to simulate");
-  if (d_.x.size() != n || d_.y.size() != n || d_.vx.size() != n || d_.vy.size() != n || d_.mass.size() != n ||
-      d_.material.size() != n || d_.id.size() != n)
+  if (d_.x.size() != n || d_.y.size() != n || d_.vx.size() != n || d_.vy.size() != n ||
+      d_.mass.size() != n || d_.material.size() != n || d_.id.size() != n)
     throw InputError("the disk arrays differ in length");
   h_.resize(n);
   for (std::size_t i = 0; i < n; ++i)
-    h_[i] = Hot{disks.x[i], disks.y[i], disks.vx[i], disks.vy[i], 0.0, disks.radius[i], disks.mass[i], 0, -1};
+    h_[i] = Hot{disks.x[i],      disks.y[i],    disks.vx[i], disks.vy[i], 0.0,
+                disks.radius[i], disks.mass[i], 0,           -1};
   if (n >= std::numeric_limits<std::uint32_t>::max() / 2)
     throw InputError("too many disks");
   for (std::size_t i = 0; i < n; ++i) {
@@ -111,8 +115,10 @@ HardDiskSystem::HardDiskSystem(const HardDisks& disks, const HardDiskParams& par
     if (!(h_[i].m > 0.0) || !std::isfinite(h_[i].m))
       throw InputError(describeDisk(d_, i) + " has a non-positive mass");
     const double r = h_[i].r;
-    const bool inX = p_.periodicX ? (h_[i].x >= 0.0 && h_[i].x < p_.width) : (h_[i].x >= r && h_[i].x <= p_.width - r);
-    const bool inY = p_.periodicY ? (h_[i].y >= 0.0 && h_[i].y < p_.height) : (h_[i].y >= r && h_[i].y <= p_.height - r);
+    const bool inX = p_.periodicX ? (h_[i].x >= 0.0 && h_[i].x < p_.width)
+                                  : (h_[i].x >= r && h_[i].x <= p_.width - r);
+    const bool inY = p_.periodicY ? (h_[i].y >= 0.0 && h_[i].y < p_.height)
+                                  : (h_[i].y >= r && h_[i].y <= p_.height - r);
     if (!inX || !inY)
       throw InputError(describeDisk(d_, i) + " is not inside the box (or is larger than it)");
   }
@@ -155,7 +161,8 @@ HardDiskSystem::HardDiskSystem(const HardDisks& disks, const HardDiskParams& par
   cellH_ = p_.height / ny_;
   reach_.assign(n, 1);
   for (std::uint32_t b : bigs_)
-    reach_[b] = static_cast<int>(std::ceil((h_[b].r + smallMax_) * gEnd / std::min(cellW_, cellH_)));
+    reach_[b] =
+        static_cast<int>(std::ceil((h_[b].r + smallMax_) * gEnd / std::min(cellW_, cellH_)));
 
   head_.assign(nx_ * ny_ + 1, -1); // the last cell stays empty: what lies beyond a wall
   gridFast_ = nx_ >= 3 && ny_ >= 3 && p_.growthRate == 0.0;
@@ -208,7 +215,8 @@ double HardDiskSystem::smallestGap() const {
 double HardDiskSystem::gapNow(std::size_t i, std::size_t j) const {
   const double dti = time_ - h_[i].t, dtj = time_ - h_[j].t, acc = p_.gravity;
   double dx = h_[j].x + h_[j].vx * dtj - h_[i].x - h_[i].vx * dti;
-  double dy = h_[j].y + (h_[j].vy - 0.5 * acc * dtj) * dtj - h_[i].y - (h_[i].vy - 0.5 * acc * dti) * dti;
+  double dy =
+      h_[j].y + (h_[j].vy - 0.5 * acc * dtj) * dtj - h_[i].y - (h_[i].vy - 0.5 * acc * dti) * dti;
   if (p_.periodicX)
     dx = minimumImage(dx, p_.width);
   if (p_.periodicY)
@@ -220,8 +228,9 @@ template <class F> void HardDiskSystem::forNearby(std::size_t i, F&& f) const {
   const long cx = static_cast<long>(cellOf_[i].x), cy = static_cast<long>(cellOf_[i].y);
   forAxisCells(cy, reach_[i], static_cast<long>(ny_), p_.periodicY, [&](long ky) {
     forAxisCells(cx, reach_[i], static_cast<long>(nx_), p_.periodicX, [&](long kx) {
-      for (std::int32_t k = head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)]; k >= 0;
-           k = h_[static_cast<std::size_t>(k)].next)
+      for (std::int32_t k =
+               head_[static_cast<std::size_t>(ky) * nx_ + static_cast<std::size_t>(kx)];
+           k >= 0; k = h_[static_cast<std::size_t>(k)].next)
         f(static_cast<std::size_t>(k));
     });
   });
@@ -275,7 +284,8 @@ void HardDiskSystem::stream(std::size_t i) {
   h_[i].y = y0 + vy0 * dt - 0.5 * g * dt * dt;
   h_[i].vy = vy0 - g * dt;
   h_[i].t = time_;
-  if (watchSurface_ && !crossed_[i] && y0 < surface_ && h_[i].y >= surface_ && d_.material[i] == groundMaterial_) {
+  if (watchSurface_ && !crossed_[i] && y0 < surface_ && h_[i].y >= surface_ &&
+      d_.material[i] == groundMaterial_) {
     // First upward crossing on this segment: y0 + vy0 τ - g τ²/2 = surface, smallest root.
     const double h = surface_ - y0;
     const double disc = std::max(0.0, vy0 * vy0 - 2.0 * g * h);
@@ -286,7 +296,8 @@ void HardDiskSystem::stream(std::size_t i) {
   }
 }
 
-double HardDiskSystem::exitTime(double pos, double vel, double acc, double lo, double hi, int& side) const {
+double HardDiskSystem::exitTime(double pos, double vel, double acc, double lo, double hi,
+                                int& side) const {
   // Time until pos + vel τ + acc τ²/2 reaches lo (side -1) or hi (side +1); acc <= 0.
   side = 0;
   if (acc == 0.0) {
@@ -402,8 +413,8 @@ void HardDiskSystem::consider(std::size_t i, std::size_t j, Event& best) const {
 // Pair events of small disk i with the small disks of one cell list, for a fixed kind of box
 // (gravity or not, periodic axes): the common case, with no growth, compiled without the
 // branches the general code needs.
-template <bool Grav, bool PX, bool PY>
-__attribute__((always_inline)) inline void HardDiskSystem::scanList(std::size_t i, std::int32_t k, Event& best) const {
+template <bool Grav, bool PX, bool PY> __attribute__((always_inline)) inline void
+HardDiskSystem::scanList(std::size_t i, std::int32_t k, Event& best) const {
   const Hot& a = h_[i];
   const double g = p_.gravity, now = time_;
   const double W = p_.width, H = p_.height;
@@ -445,19 +456,21 @@ __attribute__((always_inline)) inline void HardDiskSystem::scanList(std::size_t 
 }
 
 // The cell lists that start at first[0 .. cells-1], one after the other.
-template <bool Grav, bool PX, bool PY>
-inline void HardDiskSystem::scanLists(std::size_t i, const std::int32_t* first, int cells, Event& best) const {
+template <bool Grav, bool PX, bool PY> inline void
+HardDiskSystem::scanLists(std::size_t i, const std::int32_t* first, int cells, Event& best) const {
   for (int c = 0; c < cells; ++c)
     scanList<Grav, PX, PY>(i, first[c], best);
 }
 
-template <bool Grav, bool PX, bool PY> void HardDiskSystem::scanBlock(std::size_t i, Event& best) const {
+template <bool Grav, bool PX, bool PY>
+void HardDiskSystem::scanBlock(std::size_t i, Event& best) const {
   Block block;
   gatherBlock<PX, PY>(i, block);
   scanLists<Grav, PX, PY>(i, block.first, block.cells, best);
 }
 
-template <bool PX, bool PY> inline void HardDiskSystem::gatherBlock(std::size_t i, Block& block) const {
+template <bool PX, bool PY>
+inline void HardDiskSystem::gatherBlock(std::size_t i, Block& block) const {
   // The 3x3 cells around i (an axis without periodicity reads the always empty cell beyond
   // the grid at its ends); their first disks' records are requested together, since most
   // cells hold zero or one disk and these are most of a prediction's loads.
@@ -481,7 +494,8 @@ template <bool PX, bool PY> inline void HardDiskSystem::gatherBlock(std::size_t 
   block.cells = cells;
 }
 
-template <bool Grav, bool PX, bool PY> void HardDiskSystem::predictPair(std::size_t i, std::size_t j) {
+template <bool Grav, bool PX, bool PY>
+void HardDiskSystem::predictPair(std::size_t i, std::size_t j) {
   // Both disks of a collision: the two blocks' cells and first records are requested before
   // either is scanned, so that their loads overlap.
   Block bi, bj;
@@ -518,11 +532,11 @@ void HardDiskSystem::scanEdge(std::size_t i, std::uint32_t direction, Event& bes
 void HardDiskSystem::chooseScans() {
   const int kind = (p_.gravity != 0.0 ? 4 : 0) + (p_.periodicX ? 2 : 0) + (p_.periodicY ? 1 : 0);
   switch (kind) {
-#define CK_SCANS(K, G, X, Y)                                                                                       \
-  case K:                                                                                                          \
-    scanBlock_ = &HardDiskSystem::scanBlock<G, X, Y>;                                                              \
-    scanEdge_ = &HardDiskSystem::scanEdge<G, X, Y>;                                                                \
-    predictPair_ = &HardDiskSystem::predictPair<G, X, Y>;                                                          \
+#define CK_SCANS(K, G, X, Y)                                                                       \
+  case K:                                                                                          \
+    scanBlock_ = &HardDiskSystem::scanBlock<G, X, Y>;                                              \
+    scanEdge_ = &HardDiskSystem::scanEdge<G, X, Y>;                                                \
+    predictPair_ = &HardDiskSystem::predictPair<G, X, Y>;                                          \
     break;
     CK_SCANS(0, false, false, false)
     CK_SCANS(1, false, false, true)
@@ -571,7 +585,8 @@ void HardDiskSystem::predictAfterCrossing(std::size_t i, std::uint32_t direction
   // with it: keep the best of them (if its partner has not collided since) and scan only the
   // row or column of cells that just came within reach.
   Event best = pairBest_[i];
-  if (!fastScan(i) || (best.type == EventType::Pair && h_[best.partner].count != best.partnerCount)) {
+  if (!fastScan(i) ||
+      (best.type == EventType::Pair && h_[best.partner].count != best.partnerCount)) {
     predict(i);
     return;
   }
@@ -603,7 +618,8 @@ void HardDiskSystem::collide(std::size_t i, std::size_t j) {
   const double mi = h_[i].m, mj = h_[j].m, mred = mi * mj / (mi + mj);
   const double sigma0 = h_[i].r + h_[j].r;
   double e = p_.restitution;
-  if (p_.tcTime > 0.0 && (time_ - lastCollision_[i] < p_.tcTime || time_ - lastCollision_[j] < p_.tcTime))
+  if (p_.tcTime > 0.0 &&
+      (time_ - lastCollision_[i] < p_.tcTime || time_ - lastCollision_[j] < p_.tcTime))
     e = 1.0;
   const double J = std::max(0.0, mred * ((1.0 + e) * approach + 2.0 * sigma0 * p_.growthRate));
   h_[i].vx -= J / mi * nx;
@@ -619,7 +635,8 @@ void HardDiskSystem::collide(std::size_t i, std::size_t j) {
   if (sourceMaterial_ >= 0 && (disturbed_[i] || disturbed_[j]))
     disturbed_[i] = disturbed_[j] = 1;
   if (log_)
-    log_->push_back(EventRecord{time_, EventType::Pair, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)});
+    log_->push_back(EventRecord{time_, EventType::Pair, static_cast<std::uint32_t>(i),
+                                static_cast<std::uint32_t>(j)});
   if (fastScan(i) && fastScan(j)) {
     (this->*predictPair_)(i, j);
   } else {
@@ -751,7 +768,8 @@ void HardDiskSystem::verify(std::size_t i) const {
     check(b);
   // Inside the box along walled axes.
   const double r = h_[i].r * g, dti = time_ - h_[i].t;
-  const double x = h_[i].x + h_[i].vx * dti, y = h_[i].y + (h_[i].vy - 0.5 * p_.gravity * dti) * dti;
+  const double x = h_[i].x + h_[i].vx * dti,
+               y = h_[i].y + (h_[i].vy - 0.5 * p_.gravity * dti) * dti;
   const double tol = 1e-9 * r;
   if ((!p_.periodicX && (x < r - tol || x > p_.width - r + tol)) ||
       (!p_.periodicY && (y < r - tol || y > p_.height - r + tol))) {

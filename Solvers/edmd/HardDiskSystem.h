@@ -33,7 +33,8 @@ struct HardDisks {
   std::vector<int> material;
   std::vector<std::int64_t> id;
   std::size_t size() const { return radius.size(); }
-  void add(double px, double py, double pvx, double pvy, double r, double m, int mat, std::int64_t ident);
+  void add(double px, double py, double pvx, double pvy, double r, double m, int mat,
+           std::int64_t ident);
 };
 
 struct HardDiskParams {
@@ -45,8 +46,8 @@ struct HardDiskParams {
   // TC model against inelastic collapse (Luding & McNamara 1998): a collision of a disk whose
   // previous collision was less than tcTime ago is elastic. 0 disables it.
   double tcTime = 0.0;
-  double growthRate = 0.0;      // γ, 1/s (compression only; needs gravity = 0)
-  double growthEnd = 0.0;       // s, the time growth stops being allowed (sizes the cells)
+  double growthRate = 0.0; // γ, 1/s (compression only; needs gravity = 0)
+  double growthEnd = 0.0;  // s, the time growth stops being allowed (sizes the cells)
   void validate() const;
 };
 
@@ -120,7 +121,8 @@ private:
   void predict(std::size_t i);
   // The common case (a small disk, the 3x3 cells, no growth), specialised for the box.
   bool fastScan(std::size_t i) const { return gridFast_ && !isBig_[i]; }
-  template <bool Grav, bool PX, bool PY> void scanList(std::size_t i, std::int32_t k, Event& best) const;
+  template <bool Grav, bool PX, bool PY>
+  void scanList(std::size_t i, std::int32_t k, Event& best) const;
   template <bool Grav, bool PX, bool PY> void scanBlock(std::size_t i, Event& best) const;
   struct Block {
     std::int32_t first[9]; // first disk of each non-empty cell of the 3x3 block
@@ -133,7 +135,8 @@ private:
   void scheduleNext(std::size_t i, Event& best);
   template <bool Grav, bool PX, bool PY>
   void scanLists(std::size_t i, const std::int32_t* first, int cells, Event& best) const;
-  template <bool Grav, bool PX, bool PY> void scanEdge(std::size_t i, std::uint32_t direction, Event& best) const;
+  template <bool Grav, bool PX, bool PY>
+  void scanEdge(std::size_t i, std::uint32_t direction, Event& best) const;
   void chooseScans();
   void (HardDiskSystem::*scanBlock_)(std::size_t, Event&) const = nullptr;
   void (HardDiskSystem::*scanEdge_)(std::size_t, std::uint32_t, Event&) const = nullptr;
@@ -159,7 +162,7 @@ private:
   // What the event loop touches for a disk, in one cache line.
   struct Hot {
     double x, y, vx, vy;
-    double t;            // time of the last update
+    double t; // time of the last update
     double r, m;
     std::uint32_t count; // collisions so far (events record the partner's)
     std::int32_t next;   // next disk in the same cell, -1 at the end

@@ -12,10 +12,10 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <iterator>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <map>
 #include <queue>
 #include <unordered_map>
@@ -46,7 +46,9 @@ double weight(double r, double h) {
   return q < 0.5 ? 6.0 * q * q * q - 6.0 * q * q + 1.0 : 2.0 * t * t * t;
 }
 
-Eigen::Vector3d vec(const std::vector<double>& a, std::size_t i) { return {a[3 * i], a[3 * i + 1], a[3 * i + 2]}; }
+Eigen::Vector3d vec(const std::vector<double>& a, std::size_t i) {
+  return {a[3 * i], a[3 * i + 1], a[3 * i + 2]};
+}
 
 // A hash key of integer cell coordinates (for sparse grids in unordered containers).
 long long keyOf(long long a, long long b, long long c) {
@@ -99,10 +101,11 @@ void merge(Piece& a, const Piece& b) {
 // piece (centre to centre) within `reach` that stays at most `heavy` with it; a piece with none
 // at its turn stays as it is, unless `dropLone`: a piece still lighter than `light` at the end
 // (none within reach to join) is taken out and returned, so that it becomes no grain. The
-// search runs on a grid of cells `reach` wide (a piece that moves, as merged centres do, is listed again in its new cell; the distance is always taken
-// from where it is now), so it costs about the number of pieces times their neighbours.
-std::vector<Piece> mergeLightPieces(std::vector<Piece>& pieces, double light, double heavy, double reach,
-                                    bool dropLone) {
+// search runs on a grid of cells `reach` wide (a piece that moves, as merged centres do, is listed
+// again in its new cell; the distance is always taken from where it is now), so it costs about the
+// number of pieces times their neighbours.
+std::vector<Piece> mergeLightPieces(std::vector<Piece>& pieces, double light, double heavy,
+                                    double reach, bool dropLone) {
   std::vector<Piece> lone;
   if (!(light > 0.0) || !(reach > 0.0) || pieces.size() < 2)
     return lone;
@@ -175,7 +178,8 @@ HandoffTotals totalsOf(const std::vector<Piece>& pieces) {
   HandoffTotals t;
   for (const Piece& q : pieces) {
     t.mass += q.m;
-    const Eigen::Vector3d x(q.x[0], q.x[1], q.x[2]), p = q.m * Eigen::Vector3d(q.v[0], q.v[1], q.v[2]);
+    const Eigen::Vector3d x(q.x[0], q.x[1], q.x[2]),
+        p = q.m * Eigen::Vector3d(q.v[0], q.v[1], q.v[2]);
     const Eigen::Vector3d l = x.cross(p) + Eigen::Vector3d(q.L[0], q.L[1], q.L[2]);
     for (int a = 0; a < 3; ++a)
       t.momentum[a] += p(a), t.angularMomentum[a] += l(a);
@@ -208,9 +212,11 @@ void HandoffParams::validate() const {
   if (!(ejectaDensity >= 0.0) || !std::isfinite(ejectaDensity))
     throw InputError("ImpactHandoff: the ejecta grain density must not be negative (0: the bed's)");
   if (!(gravity >= 0.0) || !std::isfinite(gravity))
-    throw InputError("ImpactHandoff: the gravity for ballistic landing must be finite and not negative");
+    throw InputError(
+        "ImpactHandoff: the gravity for ballistic landing must be finite and not negative");
   if (!(groupReach >= 0.0) || !std::isfinite(groupReach))
-    throw InputError("ImpactHandoff: the reach for merging light ejecta groups must not be negative");
+    throw InputError(
+        "ImpactHandoff: the reach for merging light ejecta groups must not be negative");
 }
 
 HandoffTotals totalsOf(const ParticleSet& p, const std::vector<std::size_t>* subset) {
@@ -259,29 +265,34 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   if (ns == 0)
     throw InputError("ImpactHandoff: the SPH input has no particles");
   if (sph.x.size() != 3 * ns || sph.v.size() != 3 * ns)
-    throw InputError("ImpactHandoff: the SPH input needs positions, Velocity and Mass for every particle");
+    throw InputError(
+        "ImpactHandoff: the SPH input needs positions, Velocity and Mass for every particle");
   if (bed.size() == 0)
     throw InputError("ImpactHandoff: the bed input has no particles");
   for (std::size_t i = 0; i < ns; ++i) {
     if (!(sph.mass[i] > 0.0) || !std::isfinite(sph.mass[i]))
-      throw InputError("ImpactHandoff: SPH particle " + std::to_string(i) + " has a non-positive Mass");
+      throw InputError("ImpactHandoff: SPH particle " + std::to_string(i) +
+                       " has a non-positive Mass");
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(sph.x[3 * i + k]) || !std::isfinite(sph.v[3 * i + k]))
-        throw InputError("ImpactHandoff: SPH particle " + std::to_string(i) + " has a non-finite position or Velocity");
+        throw InputError("ImpactHandoff: SPH particle " + std::to_string(i) +
+                         " has a non-finite position or Velocity");
   }
 
   // 1. Split.
   auto t0 = std::chrono::steady_clock::now();
   std::vector<std::size_t> compact, ejecta;
   for (std::size_t i = 0; i < ns; ++i) {
-    const double v2 = sph.v[3 * i] * sph.v[3 * i] + sph.v[3 * i + 1] * sph.v[3 * i + 1] + sph.v[3 * i + 2] * sph.v[3 * i + 2];
+    const double v2 = sph.v[3 * i] * sph.v[3 * i] + sph.v[3 * i + 1] * sph.v[3 * i + 1] +
+                      sph.v[3 * i + 2] * sph.v[3 * i + 2];
     (v2 > params.ejectaSpeedLimit * params.ejectaSpeedLimit ? ejecta : compact).push_back(i);
   }
   if (compact.size() < 4) {
     char limit[32];
     std::snprintf(limit, sizeof limit, "%.3g", params.ejectaSpeedLimit);
-    throw InputError("ImpactHandoff: fewer than 4 SPH particles are slower than EjectaSpeedLimit (" + std::string(limit) +
-                     " m/s): no compact material to build a shape from");
+    throw InputError(
+        "ImpactHandoff: fewer than 4 SPH particles are slower than EjectaSpeedLimit (" +
+        std::string(limit) + " m/s): no compact material to build a shape from");
   }
   out.compactCount = compact.size();
   out.ejectaCount = ejecta.size();
@@ -334,13 +345,16 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
     if (shape.classify(c) == AlphaShape::INTERIOR) {
       ++interior;
       const Point& a = c->vertex(0)->point();
-      out.shapeVolume += std::abs(CGAL::volume(a, c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point()));
+      out.shapeVolume += std::abs(
+          CGAL::volume(a, c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point()));
     }
   if (interior == 0)
-    throw InputError("ImpactHandoff: the alpha shape is empty: no tetrahedron of the " +
-                     std::to_string(compact.size()) + " compact SPH particles fits in a sphere of radius Alpha (" +
-                     std::to_string(alphaRadius) + " m): Alpha is below the particle spacing, or the compact "
-                     "particles are too few and scattered (raise EjectaSpeedLimit or hand off earlier)");
+    throw InputError(
+        "ImpactHandoff: the alpha shape is empty: no tetrahedron of the " +
+        std::to_string(compact.size()) +
+        " compact SPH particles fits in a sphere of radius Alpha (" + std::to_string(alphaRadius) +
+        " m): Alpha is below the particle spacing, or the compact "
+        "particles are too few and scattered (raise EjectaSpeedLimit or hand off earlier)");
   // Boundary triangles, oriented outwards (away from the interior cell).
   {
     std::vector<AlphaShape::Facet> facets;
@@ -352,7 +366,8 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
         return it->second;
       const long long k = static_cast<long long>(index.size());
       index.emplace(v, k);
-      out.surfacePoints.insert(out.surfacePoints.end(), {v->point().x(), v->point().y(), v->point().z()});
+      out.surfacePoints.insert(out.surfacePoints.end(),
+                               {v->point().x(), v->point().y(), v->point().z()});
       return k;
     };
     for (AlphaShape::Facet f : facets) {
@@ -360,9 +375,11 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
         f = shape.mirror_facet(f);
       const auto c = f.first;
       const int i = f.second;
-      AlphaShape::Vertex_handle v[3] = {c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
+      AlphaShape::Vertex_handle v[3] = {c->vertex((i + 1) & 3), c->vertex((i + 2) & 3),
+                                        c->vertex((i + 3) & 3)};
       const Point& opposite = c->vertex(i)->point();
-      if (CGAL::orientation(v[0]->point(), v[1]->point(), v[2]->point(), opposite) == CGAL::POSITIVE)
+      if (CGAL::orientation(v[0]->point(), v[1]->point(), v[2]->point(), opposite) ==
+          CGAL::POSITIVE)
         std::swap(v[1], v[2]); // the fourth vertex (inside) must be on the negative side
       for (auto& vh : v)
         out.triangles.push_back(id(vh));
@@ -389,7 +406,8 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   auto nearCompact = [&](const double* x) {
     bool found = false;
     cells.forEachCandidate(x, halfSpacing, [&](std::size_t k) {
-      const double d2 = (cx[3 * k] - x[0]) * (cx[3 * k] - x[0]) + (cx[3 * k + 1] - x[1]) * (cx[3 * k + 1] - x[1]) +
+      const double d2 = (cx[3 * k] - x[0]) * (cx[3 * k] - x[0]) +
+                        (cx[3 * k + 1] - x[1]) * (cx[3 * k + 1] - x[1]) +
                         (cx[3 * k + 2] - x[2]) * (cx[3 * k + 2] - x[2]);
       found = found || d2 < halfSpacing * halfSpacing;
     });
@@ -406,7 +424,8 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
     }
     ++inRegion;
     hint = shape.locate(Point(x[0], x[1], x[2]), hint);
-    if ((!shape.is_infinite(hint) && shape.classify(hint) == AlphaShape::INTERIOR) || nearCompact(x)) {
+    if ((!shape.is_infinite(hint) && shape.classify(hint) == AlphaShape::INTERIOR) ||
+        nearCompact(x)) {
       mapped.push_back(keep.size());
       keep.push_back(i);
     } else {
@@ -414,7 +433,8 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
     }
   }
   if (inRegion == 0)
-    throw InputError("ImpactHandoff: no bed particle lies in the region the SPH target occupied: the bed and the "
+    throw InputError("ImpactHandoff: no bed particle lies in the region the SPH target occupied: "
+                     "the bed and the "
                      "SPH target do not overlap");
   out.seconds.carve = seconds(t0);
 
@@ -438,9 +458,10 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
       outside += in ? 0 : 1;
     }
     if (outside > compact.size() / 100)
-      out.warnings.push_back(std::to_string(outside) + " of " + std::to_string(compact.size()) +
-                             " compact SPH particles lie outside the bed: the bed and the SPH target do not cover "
-                             "the same region");
+      out.warnings.push_back(
+          std::to_string(outside) + " of " + std::to_string(compact.size()) +
+          " compact SPH particles lie outside the bed: the bed and the SPH target do not cover "
+          "the same region");
   }
 
   ParticleSet& p = out.particles;
@@ -448,7 +469,8 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   for (std::size_t i : keep) {
     p.position.insert(p.position.end(), &bed.position[3 * i], &bed.position[3 * i] + 3);
     p.velocity.insert(p.velocity.end(), &bed.velocity[3 * i], &bed.velocity[3 * i] + 3);
-    p.angularVelocity.insert(p.angularVelocity.end(), &bed.angularVelocity[3 * i], &bed.angularVelocity[3 * i] + 3);
+    p.angularVelocity.insert(p.angularVelocity.end(), &bed.angularVelocity[3 * i],
+                             &bed.angularVelocity[3 * i] + 3);
     p.radius.push_back(bed.radius[i]);
     p.mass.push_back(bed.mass[i]);
     p.density.push_back(bed.density[i]);
@@ -529,7 +551,8 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
               limit = std::min(limit, std::max(0.0, room) / std::abs(dv(a)));
           }
           v = vbar + limit * dv;
-          omega = 0.5 * limit * Eigen::Vector3d(G(2, 1) - G(1, 2), G(0, 2) - G(2, 0), G(1, 0) - G(0, 1));
+          omega = 0.5 * limit *
+                  Eigen::Vector3d(G(2, 1) - G(1, 2), G(0, 2) - G(2, 0), G(1, 0) - G(0, 1));
         }
       }
     }
@@ -611,8 +634,9 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
       }
       pieces.push_back(q);
     }
-    const std::vector<Piece> lone = mergeLightPieces(pieces, 0.5 * meanMass(bed), 2.0 * meanMass(bed),
-                                                     params.groupReach * edge, params.dropLoneLightPieces);
+    const std::vector<Piece> lone =
+        mergeLightPieces(pieces, 0.5 * meanMass(bed), 2.0 * meanMass(bed), params.groupReach * edge,
+                         params.dropLoneLightPieces);
     out.loneDropped = lone.size();
     out.sphLoneDropped = totalsOf(lone);
   } else {
@@ -652,9 +676,10 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
           auto range = grid.equal_range(keyOf(c[0] + dx, c[1] + dy, c[2] + dz));
           for (auto it = range.first; it != range.second;) {
             const std::size_t j = it->second;
-            const double d = std::sqrt((x[0] - p.position[3 * j]) * (x[0] - p.position[3 * j]) +
-                                       (x[1] - p.position[3 * j + 1]) * (x[1] - p.position[3 * j + 1]) +
-                                       (x[2] - p.position[3 * j + 2]) * (x[2] - p.position[3 * j + 2]));
+            const double d =
+                std::sqrt((x[0] - p.position[3 * j]) * (x[0] - p.position[3 * j]) +
+                          (x[1] - p.position[3 * j + 1]) * (x[1] - p.position[3 * j + 1]) +
+                          (x[2] - p.position[3 * j + 2]) * (x[2] - p.position[3 * j + 2]));
             it = f(it, j, d);
           }
         }
@@ -730,7 +755,8 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
     p.position.insert(p.position.end(), x, x + 3);
     p.velocity.insert(p.velocity.end(), v, v + 3);
     const double inertia = 0.4 * q.m * radius * radius;
-    p.angularVelocity.insert(p.angularVelocity.end(), {q.L[0] / inertia, q.L[1] / inertia, q.L[2] / inertia});
+    p.angularVelocity.insert(p.angularVelocity.end(),
+                             {q.L[0] / inertia, q.L[1] / inertia, q.L[2] / inertia});
     p.radius.push_back(radius);
     p.mass.push_back(q.m);
     p.density.push_back(q.m / (4.0 / 3.0 * M_PI * radius * radius * radius));
@@ -740,7 +766,9 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
     grid.emplace(key(x), p.size() - 1);
   }
   if (unresolved > 0)
-    out.warnings.push_back(std::to_string(unresolved) + " ejecta particles still overlap a neighbour by more than 1 % of a radius");
+    out.warnings.push_back(
+        std::to_string(unresolved) +
+        " ejecta particles still overlap a neighbour by more than 1 % of a radius");
   if (out.bedEvicted > 0) {
     std::vector<std::size_t> newIndex(p.size());
     std::size_t w = 0;
@@ -775,7 +803,8 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
   // momentum exactly.
   t0 = std::chrono::steady_clock::now();
   out.demBefore = totalsOf(p, &mapped);
-  HandoffTotals target = out.sphCompact; // what the mapped bed carries: the compact material below the curtain
+  HandoffTotals target =
+      out.sphCompact; // what the mapped bed carries: the compact material below the curtain
   target.mass -= out.sphCurtain.mass;
   for (int a = 0; a < 3; ++a) {
     target.momentum[a] -= out.sphCurtain.momentum[a];
@@ -811,14 +840,15 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
           p.velocity[3 * j + a] += add(a);
       }
     } else {
-      out.warnings.push_back("the mapped bed particles are collinear: angular momentum could not be corrected");
+      out.warnings.push_back(
+          "the mapped bed particles are collinear: angular momentum could not be corrected");
     }
   } else {
-    out.warnings.push_back("no bed particle lies inside the alpha shape: the compact SPH material's momentum is lost");
+    out.warnings.push_back(
+        "no bed particle lies inside the alpha shape: the compact SPH material's momentum is lost");
   }
   out.demMapped = totalsOf(p, &mapped);
   out.seconds.correct = seconds(t0);
-
 
   return out;
 }

@@ -48,27 +48,28 @@
 namespace craterkit {
 
 struct SphSnapshot {
-  std::vector<double> x, v;  // 3 per particle
-  std::vector<double> mass;  // kg
-  std::vector<double> h;     // support radius, m (0: unknown)
+  std::vector<double> x, v; // 3 per particle
+  std::vector<double> mass; // kg
+  std::vector<double> h;    // support radius, m (0: unknown)
   std::size_t size() const { return mass.size(); }
 };
 
 // The region the SPH target filled before the impact (surface z = surfaceHeight).
 struct TargetRegion {
   enum class Shape { Hemisphere, HalfSpace, Everywhere } shape = Shape::Everywhere;
-  double radius = 0.0;        // hemisphere radius or half-width and depth of the block
+  double radius = 0.0; // hemisphere radius or half-width and depth of the block
   double surfaceHeight = 0.0;
   bool contains(const double x[3]) const;
 };
 
 struct HandoffParams {
   double ejectaSpeedLimit = 1.0; // m/s
-  double alphaRadius = 0.0;      // m; 0: 1.75 × the mean nearest-neighbour spacing of the compact set
-  int minNeighbours = 1;         // below this many SPH particles in the support: the nearest one's velocity
-  double ejectaDensity = 0.0;    // kg/m³ of ejecta grains; 0: the bed's mean grain density
-  int ejectaMaterial = -1;       // -1: the bed's first particle's material
-  bool groupEjecta = false;      // one particle per cube of the bed's mean diameter instead of per SPH particle
+  double alphaRadius = 0.0; // m; 0: 1.75 × the mean nearest-neighbour spacing of the compact set
+  int minNeighbours = 1; // below this many SPH particles in the support: the nearest one's velocity
+  double ejectaDensity = 0.0; // kg/m³ of ejecta grains; 0: the bed's mean grain density
+  int ejectaMaterial = -1;    // -1: the bed's first particle's material
+  bool groupEjecta =
+      false; // one particle per cube of the bed's mean diameter instead of per SPH particle
   // Grouped: a cube's piece lighter than half a mean bed grain joins the nearest piece within
   // this many cube edges (0: never), so that a sparse curtain does not make small grains.
   double groupReach = 2.0;
@@ -77,7 +78,8 @@ struct HandoffParams {
   // set the DEM's time step for the whole bed (a 1e5-grain SCI bed at Ryugu's gravity: a piece
   // of 1 % of a grain's mass, 4.5 times more steps). False: it stays as a small grain.
   bool dropLoneLightPieces = true;
-  bool dropEjecta = false;       // no particles for the ejecta (they escape): only their totals are reported
+  bool dropEjecta =
+      false; // no particles for the ejecta (they escape): only their totals are reported
   // Compact SPH material above the target's surface (higher than one alpha radius over it: the
   // ejecta curtain of a late hand-off, slower than the limit) has no bed particle to lend its
   // momentum to: it becomes particles as the ejecta do (never dropped: it lands), and the
@@ -101,22 +103,25 @@ struct HandoffTotals {
 };
 
 struct HandoffResult {
-  ParticleSet particles;              // kept bed, then ejecta
-  std::vector<int> origin;            // 0 bed, 1 ejecta
-  std::vector<double> surfacePoints;  // alpha-shape boundary: 3 per vertex
-  std::vector<long long> triangles;   // 3 vertex indices per triangle, outward normals
+  ParticleSet particles;             // kept bed, then ejecta
+  std::vector<int> origin;           // 0 bed, 1 ejecta
+  std::vector<double> surfacePoints; // alpha-shape boundary: 3 per vertex
+  std::vector<long long> triangles;  // 3 vertex indices per triangle, outward normals
   double alphaRadius = 0.0;
   std::size_t compactCount = 0, ejectaCount = 0, bedRemoved = 0, bedMapped = 0;
-  std::size_t curtainCount = 0;       // compact SPH particles above the surface (escaped ones included)
-  std::size_t escapedCount = 0;       // curtain and kept ejecta that land outside the container
-  std::size_t loneDropped = 0;        // grouped pieces lighter than half a bed grain, none to join: no particle
-  std::size_t ejectaShrunk = 0;       // ejecta with no free place on their path, made smaller to fit
-  std::size_t bedEvicted = 0;         // bed particles whose place an ejecta particle took
-  HandoffTotals sphCompact, sphEjecta, demMapped, demEjecta, demBefore; // demBefore: mapped set before correction
-  HandoffTotals sphCurtain;           // the part of sphCompact above the surface (in demEjecta, not demMapped)
-  HandoffTotals sphEscaped;           // curtain and kept ejecta landing outside (in neither)
-  HandoffTotals sphLoneDropped;       // lone light pieces (loneDropped): in none of the above
-  double shapeVolume = 0.0;           // volume of the alpha shape's interior cells, m³
+  std::size_t curtainCount = 0; // compact SPH particles above the surface (escaped ones included)
+  std::size_t escapedCount = 0; // curtain and kept ejecta that land outside the container
+  std::size_t loneDropped =
+      0; // grouped pieces lighter than half a bed grain, none to join: no particle
+  std::size_t ejectaShrunk = 0; // ejecta with no free place on their path, made smaller to fit
+  std::size_t bedEvicted = 0;   // bed particles whose place an ejecta particle took
+  HandoffTotals sphCompact, sphEjecta, demMapped, demEjecta,
+      demBefore; // demBefore: mapped set before correction
+  HandoffTotals
+      sphCurtain; // the part of sphCompact above the surface (in demEjecta, not demMapped)
+  HandoffTotals sphEscaped;     // curtain and kept ejecta landing outside (in neither)
+  HandoffTotals sphLoneDropped; // lone light pieces (loneDropped): in none of the above
+  double shapeVolume = 0.0;     // volume of the alpha shape's interior cells, m³
   std::vector<std::string> warnings;
   struct Timing {
     double split = 0, alphaShape = 0, carve = 0, map = 0, correct = 0, ejecta = 0;

@@ -39,7 +39,8 @@ struct Cursor {
     if (atEnd())
       fail("unexpected end of file");
     const std::size_t end = text.find('\n', pos);
-    std::string_view l = text.substr(pos, (end == std::string_view::npos ? text.size() : end) - pos);
+    std::string_view l =
+        text.substr(pos, (end == std::string_view::npos ? text.size() : end) - pos);
     pos = end == std::string_view::npos ? text.size() : end + 1;
     ++line;
     if (!l.empty() && l.back() == '\r')
@@ -89,7 +90,8 @@ std::string printable(std::string_view s) {
 // LAMMPS's spellings of inf and nan, which from_chars does not read from every writer.
 bool special(std::string_view token, double& v) {
   std::string t(token.substr(0, 8));
-  std::transform(t.begin(), t.end(), t.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  std::transform(t.begin(), t.end(), t.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
   if (token.size() > 8)
     return false;
   if (t == "nan" || t == "-nan" || t == "+nan")
@@ -131,7 +133,8 @@ long long toInteger(std::string_view token, const Cursor& c, std::size_t line, c
   long long v = 0;
   const auto r = std::from_chars(token.data(), token.data() + token.size(), v);
   if (r.ec != std::errc() || r.ptr != token.data() + token.size())
-    c.fail(std::string("expected an integer for ") + what + ", got '" + printable(token) + "'", line);
+    c.fail(std::string("expected an integer for ") + what + ", got '" + printable(token) + "'",
+           line);
   return v;
 }
 
@@ -139,16 +142,50 @@ bool startsWith(std::string_view s, std::string_view p) { return s.substr(0, p.s
 
 // ---- dump columns -----------------------------------------------------------------------------
 
-enum class Col { Id, Type, X, Y, Z, Xs, Ys, Zs, Vx, Vy, Vz, Wx, Wy, Wz, Radius, Diameter, Mass, Density, Extra };
+enum class Col {
+  Id,
+  Type,
+  X,
+  Y,
+  Z,
+  Xs,
+  Ys,
+  Zs,
+  Vx,
+  Vy,
+  Vz,
+  Wx,
+  Wy,
+  Wz,
+  Radius,
+  Diameter,
+  Mass,
+  Density,
+  Extra
+};
 
 Col columnKind(std::string_view name) {
-  static const std::map<std::string_view, Col> known = {
-      {"id", Col::Id},         {"type", Col::Type},       {"x", Col::X},           {"y", Col::Y},
-      {"z", Col::Z},           {"xu", Col::X},            {"yu", Col::Y},          {"zu", Col::Z},
-      {"xs", Col::Xs},         {"ys", Col::Ys},           {"zs", Col::Zs},         {"vx", Col::Vx},
-      {"vy", Col::Vy},         {"vz", Col::Vz},           {"omegax", Col::Wx},     {"omegay", Col::Wy},
-      {"omegaz", Col::Wz},     {"radius", Col::Radius},   {"diameter", Col::Diameter},
-      {"mass", Col::Mass},     {"density", Col::Density}};
+  static const std::map<std::string_view, Col> known = {{"id", Col::Id},
+                                                        {"type", Col::Type},
+                                                        {"x", Col::X},
+                                                        {"y", Col::Y},
+                                                        {"z", Col::Z},
+                                                        {"xu", Col::X},
+                                                        {"yu", Col::Y},
+                                                        {"zu", Col::Z},
+                                                        {"xs", Col::Xs},
+                                                        {"ys", Col::Ys},
+                                                        {"zs", Col::Zs},
+                                                        {"vx", Col::Vx},
+                                                        {"vy", Col::Vy},
+                                                        {"vz", Col::Vz},
+                                                        {"omegax", Col::Wx},
+                                                        {"omegay", Col::Wy},
+                                                        {"omegaz", Col::Wz},
+                                                        {"radius", Col::Radius},
+                                                        {"diameter", Col::Diameter},
+                                                        {"mass", Col::Mass},
+                                                        {"density", Col::Density}};
   const auto it = known.find(name);
   return it == known.end() ? Col::Extra : it->second;
 }
@@ -198,7 +235,8 @@ DumpIndexEntry readDumpHeader(Cursor& c, ParticleFrame* frame, std::vector<std::
         const std::size_t n = split(c.next(), tok, 4);
         if (n < 2)
           c.fail("a BOX BOUNDS line needs two numbers", at);
-        const double lo = toDouble(tok[0], c, at, "BOX BOUNDS"), hi = toDouble(tok[1], c, at, "BOX BOUNDS");
+        const double lo = toDouble(tok[0], c, at, "BOX BOUNDS"),
+                     hi = toDouble(tok[1], c, at, "BOX BOUNDS");
         if (frame) {
           frame->box[2 * k] = lo;
           frame->box[2 * k + 1] = hi;
@@ -252,7 +290,8 @@ struct NewlineCensus {
 #pragma omp parallel for schedule(static) if (blocks > 8)
     for (std::ptrdiff_t b = 0; b < blocks; ++b) {
       const std::size_t from = static_cast<std::size_t>(b) * kBlock;
-      perBlock[static_cast<std::size_t>(b)] = countNewlines(text.data() + from, text.data() + std::min(text.size(), from + kBlock));
+      perBlock[static_cast<std::size_t>(b)] =
+          countNewlines(text.data() + from, text.data() + std::min(text.size(), from + kBlock));
     }
   }
 };
@@ -278,7 +317,8 @@ const char* skipLineRange(const char* p, const char* e, std::size_t n, std::size
   };
   if (census) {
     const std::size_t kBlock = NewlineCensus::kBlock;
-    std::size_t block = static_cast<std::size_t>(p - base) / kBlock + 1; // the first whole block after p
+    std::size_t block =
+        static_cast<std::size_t>(p - base) / kBlock + 1; // the first whole block after p
     scan(std::min(e, base + block * kBlock));
     while (lines < n && block < census->perBlock.size() && lines + census->perBlock[block] < n &&
            base + (block + 1) * kBlock <= e) {
@@ -292,14 +332,15 @@ const char* skipLineRange(const char* p, const char* e, std::size_t n, std::size
 }
 
 // Moves the cursor past n lines (fast: no parsing).
-void skipLines(Cursor& c, std::size_t n, std::size_t firstLine, const NewlineCensus* census = nullptr) {
+void skipLines(Cursor& c, std::size_t n, std::size_t firstLine,
+               const NewlineCensus* census = nullptr) {
   const char* begin = c.text.data();
   std::size_t lines = 0;
   const char* p = skipLineRange(begin + c.pos, begin + c.text.size(), n, lines, begin, census);
   if (lines < n) {
     std::ostringstream s;
-    s << "the snapshot starting at line " << firstLine << " declares more atoms than the file holds ("
-      << lines << " lines found)";
+    s << "the snapshot starting at line " << firstLine
+      << " declares more atoms than the file holds (" << lines << " lines found)";
     c.line += lines;
     c.fail(s.str());
   }
@@ -330,7 +371,9 @@ std::vector<DumpIndexEntry> indexDump(std::string_view text, const std::string& 
     // Each atom line needs at least two bytes: refuse counts the file cannot hold before
     // anything is allocated for them.
     if (e.count > (text.size() - c.pos) / 2 + 1)
-      c.fail("NUMBER OF ATOMS " + std::to_string(e.count) + " exceeds what the rest of the file can hold", e.line);
+      c.fail("NUMBER OF ATOMS " + std::to_string(e.count) +
+                 " exceeds what the rest of the file can hold",
+             e.line);
     skipLines(c, e.count, e.line, census.get());
     e.end = c.pos;
     out.push_back(e);
@@ -340,7 +383,8 @@ std::vector<DumpIndexEntry> indexDump(std::string_view text, const std::string& 
   return out;
 }
 
-ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& entry, const std::string& fileName) {
+ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& entry,
+                                const std::string& fileName) {
   if (entry.offset > text.size())
     throw ParseError(fileName + ": snapshot offset beyond the end of the file");
   Cursor c{text, entry.offset, entry.line, fileName};
@@ -352,7 +396,9 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
     f.time = static_cast<double>(e.timestep);
   const std::size_t ncol = names.size();
   if (e.count > (text.size() - c.pos) / (2 * ncol) + 1)
-    c.fail("NUMBER OF ATOMS " + std::to_string(e.count) + " exceeds what the rest of the file can hold", e.line);
+    c.fail("NUMBER OF ATOMS " + std::to_string(e.count) +
+               " exceeds what the rest of the file can hold",
+           e.line);
 
   std::vector<Col> kind(ncol);
   bool has[static_cast<int>(Col::Extra) + 1] = {};
@@ -362,8 +408,11 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
       c.fail("column '" + names[k] + "' appears twice", e.line);
     has[static_cast<int>(kind[k])] = true;
   }
-  const bool scaled = has[static_cast<int>(Col::Xs)] || has[static_cast<int>(Col::Ys)] || has[static_cast<int>(Col::Zs)];
-  for (const auto& [a, b, name] : {std::tuple{Col::X, Col::Xs, "x"}, std::tuple{Col::Y, Col::Ys, "y"}, std::tuple{Col::Z, Col::Zs, "z"}})
+  const bool scaled = has[static_cast<int>(Col::Xs)] || has[static_cast<int>(Col::Ys)] ||
+                      has[static_cast<int>(Col::Zs)];
+  for (const auto& [a, b, name] :
+       {std::tuple{Col::X, Col::Xs, "x"}, std::tuple{Col::Y, Col::Ys, "y"},
+        std::tuple{Col::Z, Col::Zs, "z"}})
     if (!has[static_cast<int>(a)] && !has[static_cast<int>(b)])
       c.fail(std::string("the ATOMS line has no '") + name + "' column (x, xu or xs)", e.line);
   if (scaled && !f.hasBox)
@@ -427,10 +476,13 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
 #else
   const int pieces = 1; // the fuzzing build has no OpenMP
 #endif
-  std::vector<std::size_t> cut(static_cast<std::size_t>(pieces) + 1, bodyEnd), firstRow(static_cast<std::size_t>(pieces) + 1, 0);
+  std::vector<std::size_t> cut(static_cast<std::size_t>(pieces) + 1, bodyEnd),
+      firstRow(static_cast<std::size_t>(pieces) + 1, 0);
   cut[0] = bodyStart;
   for (int t = 1; t < pieces; ++t) {
-    const std::size_t at = std::max(cut[t - 1], bodyStart + (bodyEnd - bodyStart) * static_cast<std::size_t>(t) / static_cast<std::size_t>(pieces));
+    const std::size_t at =
+        std::max(cut[t - 1], bodyStart + (bodyEnd - bodyStart) * static_cast<std::size_t>(t) /
+                                             static_cast<std::size_t>(pieces));
     const void* nl = at < bodyEnd ? std::memchr(base + at, '\n', bodyEnd - at) : nullptr;
     cut[t] = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - base) + 1 : bodyEnd;
   }
@@ -449,7 +501,8 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
     // The index entry does not describe these bytes (the file changed since it was indexed).
     Cursor again{text, bodyStart, firstLine, fileName};
     skipLines(again, n, e.line);
-    c.fail("the snapshot's atom lines end elsewhere than its index says; index the file again", e.line);
+    c.fail("the snapshot's atom lines end elsewhere than its index says; index the file again",
+           e.line);
   }
   const bool anyExtra = !f.extra.empty();
 #pragma omp parallel for schedule(static, 1) num_threads(pieces)
@@ -471,7 +524,8 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
           const auto r = std::from_chars(p, end, v);
           p = r.ptr;
           if (r.ec != std::errc() || !endsToken(p, end)) {
-            fail(i, std::string("expected an integer for ") + names[k] + ", got '" + printable(tokenAt(token, end)) + "'");
+            fail(i, std::string("expected an integer for ") + names[k] + ", got '" +
+                        printable(tokenAt(token, end)) + "'");
             break;
           }
           if (kk == Col::Id) {
@@ -491,28 +545,61 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
           // from_chars does not read every writer's spelling of inf and nan; accept LAMMPS's.
           const std::string_view t = tokenAt(token, end);
           if (!special(t, v)) {
-            fail(i, std::string("expected a number for ") + names[k] + ", got '" + printable(t) + "'");
+            fail(i,
+                 std::string("expected a number for ") + names[k] + ", got '" + printable(t) + "'");
             break;
           }
           p = token + t.size();
         }
         switch (kk) {
-        case Col::X: s.position[3 * i] = v; break;
-        case Col::Y: s.position[3 * i + 1] = v; break;
-        case Col::Z: s.position[3 * i + 2] = v; break;
-        case Col::Xs: s.position[3 * i] = f.box[0] + v * (f.box[1] - f.box[0]); break;
-        case Col::Ys: s.position[3 * i + 1] = f.box[2] + v * (f.box[3] - f.box[2]); break;
-        case Col::Zs: s.position[3 * i + 2] = f.box[4] + v * (f.box[5] - f.box[4]); break;
-        case Col::Vx: s.velocity[3 * i] = v; break;
-        case Col::Vy: s.velocity[3 * i + 1] = v; break;
-        case Col::Vz: s.velocity[3 * i + 2] = v; break;
-        case Col::Wx: s.angularVelocity[3 * i] = v; break;
-        case Col::Wy: s.angularVelocity[3 * i + 1] = v; break;
-        case Col::Wz: s.angularVelocity[3 * i + 2] = v; break;
-        case Col::Radius: s.radius[i] = v; break;
-        case Col::Diameter: s.radius[i] = 0.5 * v; break;
-        case Col::Mass: s.mass[i] = v; break;
-        case Col::Density: s.density[i] = v; break;
+        case Col::X:
+          s.position[3 * i] = v;
+          break;
+        case Col::Y:
+          s.position[3 * i + 1] = v;
+          break;
+        case Col::Z:
+          s.position[3 * i + 2] = v;
+          break;
+        case Col::Xs:
+          s.position[3 * i] = f.box[0] + v * (f.box[1] - f.box[0]);
+          break;
+        case Col::Ys:
+          s.position[3 * i + 1] = f.box[2] + v * (f.box[3] - f.box[2]);
+          break;
+        case Col::Zs:
+          s.position[3 * i + 2] = f.box[4] + v * (f.box[5] - f.box[4]);
+          break;
+        case Col::Vx:
+          s.velocity[3 * i] = v;
+          break;
+        case Col::Vy:
+          s.velocity[3 * i + 1] = v;
+          break;
+        case Col::Vz:
+          s.velocity[3 * i + 2] = v;
+          break;
+        case Col::Wx:
+          s.angularVelocity[3 * i] = v;
+          break;
+        case Col::Wy:
+          s.angularVelocity[3 * i + 1] = v;
+          break;
+        case Col::Wz:
+          s.angularVelocity[3 * i + 2] = v;
+          break;
+        case Col::Radius:
+          s.radius[i] = v;
+          break;
+        case Col::Diameter:
+          s.radius[i] = 0.5 * v;
+          break;
+        case Col::Mass:
+          s.mass[i] = v;
+          break;
+        case Col::Density:
+          s.density[i] = v;
+          break;
         default:
           if (anyExtra) {
             ExtraArray& x = f.extra[static_cast<std::size_t>(extraIndex[k])];
@@ -527,8 +614,10 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
           ++p;
         if (p < end && *p != '\n') {
           const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
-          const std::string_view rest(p, static_cast<std::size_t>((nl ? static_cast<const char*>(nl) : end) - p));
-          fail(i, "expected " + std::to_string(ncol) + " values, found " + std::to_string(ncol + split(rest, nullptr, 0)));
+          const std::string_view rest(
+              p, static_cast<std::size_t>((nl ? static_cast<const char*>(nl) : end) - p));
+          fail(i, "expected " + std::to_string(ncol) + " values, found " +
+                      std::to_string(ncol + split(rest, nullptr, 0)));
         }
       } else if (p == end || *p == '\n' || *p == '\r') {
         fail(i, "expected " + std::to_string(ncol) + " values, found " + std::to_string(k));
@@ -538,13 +627,14 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
         p = nl ? static_cast<const char*>(nl) : end;
       }
       p += p < end; // past the '\n'
-
     }
   }
   if (badRow < n)
     throw ParseError(badMessage);
-  f.hasVelocity = has[static_cast<int>(Col::Vx)] || has[static_cast<int>(Col::Vy)] || has[static_cast<int>(Col::Vz)];
-  f.hasAngularVelocity = has[static_cast<int>(Col::Wx)] || has[static_cast<int>(Col::Wy)] || has[static_cast<int>(Col::Wz)];
+  f.hasVelocity = has[static_cast<int>(Col::Vx)] || has[static_cast<int>(Col::Vy)] ||
+                  has[static_cast<int>(Col::Vz)];
+  f.hasAngularVelocity = has[static_cast<int>(Col::Wx)] || has[static_cast<int>(Col::Wy)] ||
+                         has[static_cast<int>(Col::Wz)];
   f.hasRadius = has[static_cast<int>(Col::Radius)] || has[static_cast<int>(Col::Diameter)];
   f.hasMass = has[static_cast<int>(Col::Mass)];
   f.hasDensity = has[static_cast<int>(Col::Density)];
@@ -552,7 +642,9 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
   f.hasId = has[static_cast<int>(Col::Id)];
   if (f.hasMass && f.hasRadius && !f.hasDensity) {
     for (std::size_t i = 0; i < n; ++i)
-      s.density[i] = s.radius[i] > 0.0 ? s.mass[i] / (4.0 / 3.0 * M_PI * s.radius[i] * s.radius[i] * s.radius[i]) : 0.0;
+      s.density[i] = s.radius[i] > 0.0
+                         ? s.mass[i] / (4.0 / 3.0 * M_PI * s.radius[i] * s.radius[i] * s.radius[i])
+                         : 0.0;
     f.hasDensity = true;
   }
   return f;
@@ -638,7 +730,8 @@ double PkdgravUnits::time() {
 }
 
 namespace {
-static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the .ss byte swapping assumes a little-endian host");
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
+              "the .ss byte swapping assumes a little-endian host");
 std::uint64_t loadBE64(const unsigned char* p) {
   std::uint64_t v;
   std::memcpy(&v, p, 8);
@@ -699,7 +792,8 @@ ParticleFrame parseSs(std::string_view bytes, const std::string& fileName, bool 
   if (magic != kMagicStandard) {
     if (byteSwapped(magic) == kMagicStandard || byteSwapped(magic) == kMagicReduced)
       fail(12, "little-endian .ss file: pkdgrav writes XDR (big-endian)");
-    fail(12, "wrong magic number " + std::to_string(magic) + " (expected -1): not a pkdgrav .ss file");
+    fail(12,
+         "wrong magic number " + std::to_string(magic) + " (expected -1): not a pkdgrav .ss file");
   }
   // A little-endian file (not XDR) shows itself by a count that fits the size only swapped.
   const std::int32_t swapped = byteSwapped(n);
@@ -754,7 +848,8 @@ std::string writeSs(const ParticleFrame& frame, bool scaleFromSI) {
   const std::size_t n = s.size();
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()) / kSsParticle)
     throw InputError("too many particles for a .ss file (" + std::to_string(n) + ")");
-  const double L = scaleFromSI ? PkdgravUnits::length : 1.0, M = scaleFromSI ? PkdgravUnits::mass : 1.0,
+  const double L = scaleFromSI ? PkdgravUnits::length : 1.0,
+               M = scaleFromSI ? PkdgravUnits::mass : 1.0,
                T = scaleFromSI ? PkdgravUnits::time() : 1.0;
   const ExtraArray* color = nullptr;
   for (const ExtraArray& x : frame.extra)
@@ -766,8 +861,10 @@ std::string writeSs(const ParticleFrame& frame, bool scaleFromSI) {
   storeInt(out, static_cast<std::int32_t>(n));
   storeInt(out, kMagicStandard);
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.id[i] < std::numeric_limits<std::int32_t>::min() || s.id[i] > std::numeric_limits<std::int32_t>::max())
-      throw InputError("particle Id " + std::to_string(s.id[i]) + " does not fit the .ss original index (32 bits)");
+    if (s.id[i] < std::numeric_limits<std::int32_t>::min() ||
+        s.id[i] > std::numeric_limits<std::int32_t>::max())
+      throw InputError("particle Id " + std::to_string(s.id[i]) +
+                       " does not fit the .ss original index (32 bits)");
     storeDouble(out, s.mass[i] / M);
     storeDouble(out, s.radius[i] / L);
     for (int k = 0; k < 3; ++k)
@@ -783,7 +880,8 @@ std::string writeSs(const ParticleFrame& frame, bool scaleFromSI) {
   return out;
 }
 
-// ---- files ------------------------------------------------------------------------------------------
+// ---- files
+// ------------------------------------------------------------------------------------------
 
 FileBytes::FileBytes(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -805,7 +903,8 @@ FileBytes::FileBytes(const std::string& path) {
     size_ = size;
   }
   ::close(fd);
-  if (size_ >= 2 && static_cast<unsigned char>(map_[0]) == 0x1f && static_cast<unsigned char>(map_[1]) == 0x8b) {
+  if (size_ >= 2 && static_cast<unsigned char>(map_[0]) == 0x1f &&
+      static_cast<unsigned char>(map_[1]) == 0x8b) {
     std::string out;
     try {
       out = gunzip(std::string_view(map_, size_), path);
@@ -839,7 +938,8 @@ std::string gunzip(std::string_view raw, const std::string& path) {
   std::string out;
   out.resize(std::min<std::size_t>(cap, std::max<std::size_t>(raw.size() * 4, 1 << 16)));
   z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(raw.data()));
-  z.avail_in = static_cast<uInt>(std::min<std::size_t>(raw.size(), std::numeric_limits<uInt>::max()));
+  z.avail_in =
+      static_cast<uInt>(std::min<std::size_t>(raw.size(), std::numeric_limits<uInt>::max()));
   std::size_t produced = 0;
   int rc = Z_OK;
   while (rc != Z_STREAM_END) {
@@ -851,7 +951,8 @@ std::string gunzip(std::string_view raw, const std::string& path) {
       out.resize(std::min(cap, out.size() * 2));
     }
     z.next_out = reinterpret_cast<Bytef*>(out.data() + produced);
-    z.avail_out = static_cast<uInt>(std::min<std::size_t>(out.size() - produced, std::numeric_limits<uInt>::max()));
+    z.avail_out = static_cast<uInt>(
+        std::min<std::size_t>(out.size() - produced, std::numeric_limits<uInt>::max()));
     const uInt before = z.avail_out;
     rc = inflate(&z, Z_NO_FLUSH);
     produced += before - z.avail_out;
@@ -864,7 +965,8 @@ std::string gunzip(std::string_view raw, const std::string& path) {
     }
     if (rc == Z_BUF_ERROR && z.avail_in == 0) {
       inflateEnd(&z);
-      throw ParseError(path + ": truncated gzip stream after " + std::to_string(produced) + " bytes of data");
+      throw ParseError(path + ": truncated gzip stream after " + std::to_string(produced) +
+                       " bytes of data");
     }
   }
   inflateEnd(&z);

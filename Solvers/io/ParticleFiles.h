@@ -37,9 +37,9 @@ struct ExtraArray {
 
 // One snapshot of particles.
 struct ParticleFrame {
-  double time = 0.0;         // s (or the file's time unit: a dump stores the step, see below)
-  long long timestep = -1;   // a dump's ITEM: TIMESTEP
-  ParticleSet particles;     // the data-model arrays (zeros where a column was absent)
+  double time = 0.0;       // s (or the file's time unit: a dump stores the step, see below)
+  long long timestep = -1; // a dump's ITEM: TIMESTEP
+  ParticleSet particles;   // the data-model arrays (zeros where a column was absent)
   bool hasVelocity = false, hasAngularVelocity = false, hasRadius = false, hasMass = false,
        hasDensity = false, hasMaterial = false, hasId = false;
   std::vector<ExtraArray> extra;
@@ -55,12 +55,13 @@ struct DumpIndexEntry {
   std::size_t line = 1;   // line number of that line
   long long timestep = 0;
   std::size_t count = 0;
-  double time = 0.0;    // its ITEM: TIME, else the step number
-  std::size_t end = 0;  // byte offset just past its last atom line (0: not known, found again)
+  double time = 0.0;   // its ITEM: TIME, else the step number
+  std::size_t end = 0; // byte offset just past its last atom line (0: not known, found again)
 };
 std::vector<DumpIndexEntry> indexDump(std::string_view text, const std::string& fileName);
 // Parses the snapshot that starts at entry.offset.
-ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& entry, const std::string& fileName);
+ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& entry,
+                                const std::string& fileName);
 // Writes one snapshot with the columns id type x y z vx vy vz omegax omegay omegaz radius mass
 // (type = Material + 1), at full precision.
 std::string writeDump(const ParticleFrame& frame);
@@ -69,9 +70,9 @@ std::string writeDump(const ParticleFrame& frame);
 
 // pkdgrav's units: length 1 AU, mass 1 solar mass, time 1 yr / 2π (G = 1).
 struct PkdgravUnits {
-  static constexpr double length = 1.495978707e11;             // m (IAU 2012)
-  static constexpr double mass = 1.98840987e30;                // kg (IAU 2015 GM☉ / G)
-  static double time();                                        // s, sqrt(L³ / (G M))
+  static constexpr double length = 1.495978707e11; // m (IAU 2012)
+  static constexpr double mass = 1.98840987e30;    // kg (IAU 2015 GM☉ / G)
+  static double time();                            // s, sqrt(L³ / (G M))
 };
 // scaleToSI: multiply by the pkdgrav units (false: the file is already in SI).
 ParticleFrame parseSs(std::string_view bytes, const std::string& fileName, bool scaleToSI);
@@ -90,7 +91,9 @@ public:
   ~FileBytes();
   FileBytes(const FileBytes&) = delete;
   FileBytes& operator=(const FileBytes&) = delete;
-  std::string_view view() const { return map_ ? std::string_view(map_, size_) : std::string_view(owned_); }
+  std::string_view view() const {
+    return map_ ? std::string_view(map_, size_) : std::string_view(owned_);
+  }
 
 private:
   const char* map_ = nullptr;
@@ -98,7 +101,8 @@ private:
   std::string owned_;
 };
 
-// The whole file as a string, gunzipped if it starts with the gzip magic; throws ParseError naming it.
+// The whole file as a string, gunzipped if it starts with the gzip magic; throws ParseError naming
+// it.
 std::string readFileBytes(const std::string& path);
 // Decompresses a gzip stream held in memory (output capped at 1032 times the input).
 std::string gunzip(std::string_view data, const std::string& name);

@@ -18,7 +18,9 @@ double tillotsonExpanded(const TillotsonParams& t, double rho, double u) {
          (t.b * rho * u / (1.0 + u / (t.E0 * eta * eta)) + t.A * chi * std::exp(-t.beta * z)) *
              std::exp(-t.alpha * z * z);
 }
-bool inColdCut(const TillotsonParams& t, double rho, double u) { return rho / t.rho0 < t.rhoLimit && u < t.Ecv; }
+bool inColdCut(const TillotsonParams& t, double rho, double u) {
+  return rho / t.rho0 < t.rhoLimit && u < t.Ecv;
+}
 
 double tillotsonPressure(const TillotsonParams& t, double rho, double u, bool cut = true) {
   const double eta = rho / t.rho0;
@@ -28,7 +30,8 @@ double tillotsonPressure(const TillotsonParams& t, double rho, double u, bool cu
   } else if (u >= t.Ecv) {
     p = tillotsonExpanded(t, rho, u);
   } else {
-    p = (tillotsonCompressed(t, rho, u) * (t.Ecv - u) + tillotsonExpanded(t, rho, u) * (u - t.Eiv)) /
+    p = (tillotsonCompressed(t, rho, u) * (t.Ecv - u) +
+         tillotsonExpanded(t, rho, u) * (u - t.Eiv)) /
         (t.Ecv - t.Eiv);
   }
   if (cut && eta < t.rhoLimit && u < t.Ecv)
@@ -72,8 +75,11 @@ double EquationOfState::soundSpeed(double rho, double u) const {
     const TillotsonParams& t = tillotson;
     const double dr = 1e-6 * rho, du = 1e-6 * std::max(u, t.E0 * 1e-3);
     const double p = tillotsonPressure(t, rho, u, false);
-    const double dpdr = (tillotsonPressure(t, rho + dr, u, false) - tillotsonPressure(t, rho - dr, u, false)) / (2.0 * dr);
-    const double dpdu = (tillotsonPressure(t, rho, u + du, false) - tillotsonPressure(t, rho, std::max(0.0, u - du), false)) /
+    const double dpdr =
+        (tillotsonPressure(t, rho + dr, u, false) - tillotsonPressure(t, rho - dr, u, false)) /
+        (2.0 * dr);
+    const double dpdu = (tillotsonPressure(t, rho, u + du, false) -
+                         tillotsonPressure(t, rho, std::max(0.0, u - du), false)) /
                         (u > du ? 2.0 * du : du + u);
     c2 = dpdr + p / (rho * rho) * dpdu;
     break;
@@ -85,7 +91,8 @@ double EquationOfState::soundSpeed(double rho, double u) const {
 void EquationOfState::validate() {
   auto positive = [](double v, const char* name) {
     if (!(v > 0.0) || !std::isfinite(v))
-      throw InputError(std::string("equation of state: ") + name + " must be positive (got " + std::to_string(v) + ")");
+      throw InputError(std::string("equation of state: ") + name + " must be positive (got " +
+                       std::to_string(v) + ")");
   };
   switch (model) {
   case Model::Tillotson: {
@@ -113,7 +120,8 @@ void EquationOfState::validate() {
     break;
   case Model::IdealGas:
     if (!(gamma > 1.0) || !std::isfinite(gamma))
-      throw InputError("equation of state: gamma must be above 1 (got " + std::to_string(gamma) + ")");
+      throw InputError("equation of state: gamma must be above 1 (got " + std::to_string(gamma) +
+                       ")");
     break;
   }
 }
@@ -127,15 +135,20 @@ EquationOfState::Model EquationOfState::modelFromName(const std::string& name) {
     return Model::IdealGas;
   if (name == "StiffenedGas")
     return Model::StiffenedGas;
-  throw InputError("unknown equation of state '" + name + "' (Tillotson, Murnaghan, IdealGas, StiffenedGas)");
+  throw InputError("unknown equation of state '" + name +
+                   "' (Tillotson, Murnaghan, IdealGas, StiffenedGas)");
 }
 
 const char* EquationOfState::nameOf(Model m) {
   switch (m) {
-  case Model::Tillotson: return "Tillotson";
-  case Model::Murnaghan: return "Murnaghan";
-  case Model::IdealGas: return "IdealGas";
-  case Model::StiffenedGas: return "StiffenedGas";
+  case Model::Tillotson:
+    return "Tillotson";
+  case Model::Murnaghan:
+    return "Murnaghan";
+  case Model::IdealGas:
+    return "IdealGas";
+  case Model::StiffenedGas:
+    return "StiffenedGas";
   }
   return "?";
 }

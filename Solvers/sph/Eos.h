@@ -9,14 +9,14 @@
 namespace craterkit {
 
 struct TillotsonParams {
-  double rho0 = 2700.0;   // kg/m³
-  double A = 26.7e9;      // Pa
-  double B = 26.7e9;      // Pa
-  double E0 = 487e6;      // J/kg
-  double Eiv = 4.72e6;    // J/kg, incipient vaporisation
-  double Ecv = 18.2e6;    // J/kg, complete vaporisation
+  double rho0 = 2700.0; // kg/m³
+  double A = 26.7e9;    // Pa
+  double B = 26.7e9;    // Pa
+  double E0 = 487e6;    // J/kg
+  double Eiv = 4.72e6;  // J/kg, incipient vaporisation
+  double Ecv = 18.2e6;  // J/kg, complete vaporisation
   double a = 0.5, b = 1.5, alpha = 5.0, beta = 5.0;
-  double rhoLimit = 0.9;  // below η = ρ/ρ0 < rhoLimit and u < Ecv: p = 0 (no cold tension)
+  double rhoLimit = 0.9; // below η = ρ/ρ0 < rhoLimit and u < Ecv: p = 0 (no cold tension)
 };
 
 struct EquationOfState {

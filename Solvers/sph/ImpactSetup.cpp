@@ -28,7 +28,8 @@ double referenceDensity(const EquationOfState& e) {
 
 std::size_t physicalMemory() {
   const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && size > 0 ? static_cast<std::size_t>(pages) * static_cast<std::size_t>(size) : 0;
+  return pages > 0 && size > 0 ? static_cast<std::size_t>(pages) * static_cast<std::size_t>(size)
+                               : 0;
 }
 } // namespace
 
@@ -42,7 +43,8 @@ std::size_t sphBytesPerParticle(double kappa) {
 void SphImpactSetup::validate() const {
   auto positive = [](double v, const char* what) {
     if (!(v > 0.0) || !std::isfinite(v))
-      throw InputError(std::string("SPHImpact: ") + what + " must be positive (got " + std::to_string(v) + ")");
+      throw InputError(std::string("SPHImpact: ") + what + " must be positive (got " +
+                       std::to_string(v) + ")");
   };
   if (impactorRadius > 0.0)
     positive(impactorRadius, "ImpactorRadius");
@@ -58,7 +60,8 @@ void SphImpactSetup::validate() const {
   if (!(targetPorosity < 1.0) || !std::isfinite(targetPorosity))
     throw InputError("SPHImpact: TargetPorosity must be below 1 (negative: the material's)");
   if (!(frictionAngle < 90.0) || !std::isfinite(frictionAngle))
-    throw InputError("SPHImpact: FrictionAngle must be below 90 degrees (negative: the material's)");
+    throw InputError(
+        "SPHImpact: FrictionAngle must be below 90 degrees (negative: the material's)");
   if (!std::isfinite(cohesion))
     throw InputError("SPHImpact: Cohesion must be finite");
   if (!(surfaceGravity >= 0.0) || !std::isfinite(surfaceGravity))
@@ -81,7 +84,9 @@ struct Shell {
 };
 // A shell of thickness t holds points t apart over its hemisphere of radius `mid`.
 Shell shellAt(double mid, double t) {
-  return Shell{mid, t, std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(2.0 * M_PI * mid * mid / (t * t))))};
+  return Shell{mid, t,
+               std::max<std::size_t>(
+                   1, static_cast<std::size_t>(std::lround(2.0 * M_PI * mid * mid / (t * t))))};
 }
 std::vector<Shell> gradedShells(double core, double dx, double coarsening, double outer) {
   std::vector<Shell> out;
@@ -106,9 +111,11 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
   if (setup.cohesion >= 0.0)
     tgt.cohesion = setup.cohesion;
   SphImpactProblem out;
-  const double a = setup.impactorRadius > 0.0 ? setup.impactorRadius
-                                              : std::cbrt(3.0 * setup.impactorMass / (4.0 * M_PI * rhoImp));
-  const double mass = setup.impactorRadius > 0.0 ? 4.0 / 3.0 * M_PI * a * a * a * rhoImp : setup.impactorMass;
+  const double a = setup.impactorRadius > 0.0
+                       ? setup.impactorRadius
+                       : std::cbrt(3.0 * setup.impactorMass / (4.0 * M_PI * rhoImp));
+  const double mass =
+      setup.impactorRadius > 0.0 ? 4.0 / 3.0 * M_PI * a * a * a * rhoImp : setup.impactorMass;
   const double dx = 2.0 * a / setup.particlesAcrossImpactor, R = setup.targetRadius;
   if (R < 3.0 * a)
     throw InputError("SPHImpact: TargetRadius must be at least three impactor radii");
@@ -127,27 +134,31 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
     targetShells = shells.size();
     if (setup.container) {
       // Three spacings of container at the spacing the target ends with.
-      const double t = shells.empty() ? dx : shells.back().thickness, start = shells.empty() ? core : shells.back().mid + 0.5 * t;
+      const double t = shells.empty() ? dx : shells.back().thickness,
+                   start = shells.empty() ? core : shells.back().mid + 0.5 * t;
       for (int k = 0; k < 3; ++k)
         shells.push_back(shellAt(start + (k + 0.5) * t, t));
     }
   }
 
   // Refuse what the machine cannot hold before allocating anything.
-  const double volume = setup.targetShape == SphImpactSetup::Shape::Hemisphere ? 2.0 / 3.0 * M_PI * R * R * R
-                                                                               : 4.0 * R * R * R;
-  double estimate = volume / (dx * dx * dx) + 4.0 / 3.0 * M_PI * std::pow(0.5 * setup.particlesAcrossImpactor, 3);
+  const double volume = setup.targetShape == SphImpactSetup::Shape::Hemisphere
+                            ? 2.0 / 3.0 * M_PI * R * R * R
+                            : 4.0 * R * R * R;
+  double estimate =
+      volume / (dx * dx * dx) + 4.0 / 3.0 * M_PI * std::pow(0.5 * setup.particlesAcrossImpactor, 3);
   if (graded) {
-    estimate = 2.0 / 3.0 * M_PI * core * core * core / (dx * dx * dx) + 4.0 / 3.0 * M_PI * std::pow(0.5 * setup.particlesAcrossImpactor, 3);
+    estimate = 2.0 / 3.0 * M_PI * core * core * core / (dx * dx * dx) +
+               4.0 / 3.0 * M_PI * std::pow(0.5 * setup.particlesAcrossImpactor, 3);
     for (const Shell& sh : shells)
       estimate += static_cast<double>(sh.count);
   }
   const double need = estimate * static_cast<double>(sphBytesPerParticle(2.5));
   const double have = static_cast<double>(physicalMemory());
   if (estimate > 1.2e8 || (have > 0.0 && need > setup.memoryLimitFraction * have))
-    throw InputError("SPHImpact: about " + std::to_string(static_cast<long long>(estimate)) + " particles would need " +
-                     std::to_string(static_cast<long long>(need / 1e9)) + " GB of memory (" +
-                     std::to_string(static_cast<long long>(have / 1e9)) +
+    throw InputError("SPHImpact: about " + std::to_string(static_cast<long long>(estimate)) +
+                     " particles would need " + std::to_string(static_cast<long long>(need / 1e9)) +
+                     " GB of memory (" + std::to_string(static_cast<long long>(have / 1e9)) +
                      " GB here): lower ParticlesAcrossImpactor or TargetRadius");
 
   const double th = setup.impactAngle * M_PI / 180.0;
@@ -168,7 +179,8 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
   if (ni == 0)
     throw InputError("SPHImpact: the impactor has no particles");
   for (std::size_t q = 0; q < ni; ++q) {
-    const double x[3] = {centre[0] + pts[3 * q], centre[1] + pts[3 * q + 1], centre[2] + pts[3 * q + 2]};
+    const double x[3] = {centre[0] + pts[3 * q], centre[1] + pts[3 * q + 1],
+                         centre[2] + pts[3 * q + 2]};
     out.state.add(x, vel, mass / static_cast<double>(ni), rhoImp, 0.0, 0);
   }
   out.impactorParticles = ni;
@@ -184,7 +196,8 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
     }
     if (std::fabs(x[0]) <= R && std::fabs(x[1]) <= R && x[2] >= -R)
       return 0;
-    return setup.container && std::fabs(x[0]) <= Rw && std::fabs(x[1]) <= Rw && x[2] >= -Rw ? 1 : -1;
+    return setup.container && std::fabs(x[0]) <= Rw && std::fabs(x[1]) <= Rw && x[2] >= -Rw ? 1
+                                                                                            : -1;
   };
   if (graded) {
     // The lattice core, then the shells: points spread evenly over each lower hemisphere
@@ -206,13 +219,18 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
       const Shell& sh = shells[k];
       const double outer = inner + sh.thickness;
       const int mat = k < targetShells ? 1 : 2; // the container's shells last
-      const double volumeShare = 2.0 / 3.0 * M_PI * (outer * outer * outer - inner * inner * inner) / static_cast<double>(sh.count);
+      const double volumeShare = 2.0 / 3.0 * M_PI *
+                                 (outer * outer * outer - inner * inner * inner) /
+                                 static_cast<double>(sh.count);
       const double turn = golden * 7.0 * static_cast<double>(k);
       for (std::size_t q = 0; q < sh.count; ++q) {
         const double z = -(static_cast<double>(q) + 0.5) / static_cast<double>(sh.count);
-        const double rho = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = turn + golden * static_cast<double>(q);
-        const double x[3] = {sh.mid * rho * std::cos(phi), sh.mid * rho * std::sin(phi), sh.mid * z};
-        out.state.add(x, rest, out.targetBulkDensity * volumeShare, out.targetBulkDensity, 0.0, mat);
+        const double rho = std::sqrt(std::max(0.0, 1.0 - z * z)),
+                     phi = turn + golden * static_cast<double>(q);
+        const double x[3] = {sh.mid * rho * std::cos(phi), sh.mid * rho * std::sin(phi),
+                             sh.mid * z};
+        out.state.add(x, rest, out.targetBulkDensity * volumeShare, out.targetBulkDensity, 0.0,
+                      mat);
         out.state.alpha.back() = tgt.distention;
         out.containerParticles += mat == 2 ? 1 : 0;
       }

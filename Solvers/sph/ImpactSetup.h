@@ -17,19 +17,19 @@
 namespace craterkit {
 
 struct SphImpactSetup {
-  std::string materialDirectory;      // folder of *.cfg material files
+  std::string materialDirectory; // folder of *.cfg material files
   std::string impactorMaterial = "copper";
-  double impactorMass = 2.0;          // kg
-  double impactorRadius = 0.0;        // m; 0: from the mass and the material's density
-  double impactSpeed = 2000.0;        // m/s
-  double impactAngle = 0.0;           // degrees from the vertical, in [0, 90)
+  double impactorMass = 2.0;   // kg
+  double impactorRadius = 0.0; // m; 0: from the mass and the material's density
+  double impactSpeed = 2000.0; // m/s
+  double impactAngle = 0.0;    // degrees from the vertical, in [0, 90)
   std::string targetMaterial = "regolith";
   enum class Shape { HalfSpace, Hemisphere } targetShape = Shape::Hemisphere;
-  double targetRadius = 0.4;          // m
-  double targetPorosity = -1.0;       // in [0, 1); negative: the material's distention
-  double frictionAngle = -1.0;        // degrees; negative: the material's
-  double cohesion = -1.0;             // Pa; negative: the material's
-  double surfaceGravity = 1.5e-4;     // m/s², along −z (Ryugu, GM/R² with R = 448 m)
+  double targetRadius = 0.4;      // m
+  double targetPorosity = -1.0;   // in [0, 1); negative: the material's distention
+  double frictionAngle = -1.0;    // degrees; negative: the material's
+  double cohesion = -1.0;         // Pa; negative: the material's
+  double surfaceGravity = 1.5e-4; // m/s², along −z (Ryugu, GM/R² with R = 448 m)
   int particlesAcrossImpactor = 4;
   // Hold the target in a rigid container of its own material, three spacings thick, around
   // its buried faces (as GranularBed's bowl holds the DEM bed). Its particles are material 2,
@@ -43,7 +43,7 @@ struct SphImpactSetup {
   // mass set by its share of its shell's volume. Resolution goes where the shock and the
   // excavation flow start, for a fraction of the particles of a uniform lattice.
   double coarsening = 1.0;
-  double memoryLimitFraction = 0.8;   // refuse set-ups that need more of the machine's memory
+  double memoryLimitFraction = 0.8; // refuse set-ups that need more of the machine's memory
   void validate() const;
 };
 

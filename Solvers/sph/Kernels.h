@@ -40,7 +40,7 @@ struct CubicSpline {
 inline double cubicGradOverR(double q, double ih, double iq) {
   const double ih2 = ih * ih, s = 8.0 / M_PI * ih2 * ih2 * ih; // 8/(π h⁵)
   const double t = 1.0 - q;
-  const double inner = 18.0 * q - 12.0;        // (18q² − 12q)/q
+  const double inner = 18.0 * q - 12.0; // (18q² − 12q)/q
   const double outer = -6.0 * t * t * iq;
   return s * (q < 0.5 ? inner : outer);
 }

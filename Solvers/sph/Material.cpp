@@ -147,7 +147,8 @@ std::vector<Material> readMaterialLibrary(const std::string& directory) {
       out.push_back(readMaterial(entry.path().string()));
   if (ec)
     throw InputError(directory + ": cannot list the material directory");
-  std::sort(out.begin(), out.end(), [](const Material& a, const Material& b) { return a.name < b.name; });
+  std::sort(out.begin(), out.end(),
+            [](const Material& a, const Material& b) { return a.name < b.name; });
   return out;
 }
 

@@ -13,20 +13,20 @@ namespace craterkit {
 struct Material {
   std::string name;
   EquationOfState eos;
-  double shearModulus = 0.0;  // Pa (0: fluid)
-  double bulkModulus = 0.0;   // Pa
+  double shearModulus = 0.0; // Pa (0: fluid)
+  double bulkModulus = 0.0;  // Pa
   enum class Strength { None, VonMises, DruckerPrager } strength = Strength::None;
-  double yieldStress = 0.0;   // Pa (von Mises)
+  double yieldStress = 0.0;    // Pa (von Mises)
   double frictionAngle = 30.0; // degrees (Drucker–Prager)
-  double cohesion = 0.0;      // Pa (Drucker–Prager)
-  double distention = 1.0;    // initial α = ρ_matrix / ρ_bulk (P–α porosity; 1: none)
-  double crushPe = 1e6;       // Pa, elastic limit of the quadratic P–α crush curve
-  double crushPs = 1e9;       // Pa, pressure at which the pores are closed (α = 1)
-  double weibullK = 0.0;      // m⁻³, Grady–Kipp flaw density n(ε) = k ε^m (0: no fracture)
-  double weibullM = 9.0;      // Weibull exponent m
-  bool rigid = false;         // boundary particles: fixed in place, their density and stress
-                              // evolve (dynamic boundary particles, Crespo et al. 2007)
-  std::string source;         // where the values come from
+  double cohesion = 0.0;       // Pa (Drucker–Prager)
+  double distention = 1.0;     // initial α = ρ_matrix / ρ_bulk (P–α porosity; 1: none)
+  double crushPe = 1e6;        // Pa, elastic limit of the quadratic P–α crush curve
+  double crushPs = 1e9;        // Pa, pressure at which the pores are closed (α = 1)
+  double weibullK = 0.0;       // m⁻³, Grady–Kipp flaw density n(ε) = k ε^m (0: no fracture)
+  double weibullM = 9.0;       // Weibull exponent m
+  bool rigid = false;          // boundary particles: fixed in place, their density and stress
+                               // evolve (dynamic boundary particles, Crespo et al. 2007)
+  std::string source;          // where the values come from
 };
 
 // A material with this equation of state and no strength or porosity (a fluid).

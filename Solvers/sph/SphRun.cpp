@@ -14,16 +14,19 @@ namespace {
 constexpr char kMagic[8] = {'C', 'K', 'S', 'P', 'H', '1', '\n', '\0'};
 
 template <class T> void put(std::ofstream& out, const std::vector<T>& v) {
-  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+  out.write(reinterpret_cast<const char*>(v.data()),
+            static_cast<std::streamsize>(v.size() * sizeof(T)));
 }
-template <class T> void get(std::ifstream& in, std::vector<T>& v, std::size_t n, const std::string& path) {
+template <class T>
+void get(std::ifstream& in, std::vector<T>& v, std::size_t n, const std::string& path) {
   v.resize(n);
   if (!in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T))))
     throw InputError(path + ": the SPH checkpoint is truncated");
 }
 } // namespace
 
-void writeSphCheckpoint(const std::string& path, const SphState& s, double time, std::size_t steps, double nextStep) {
+void writeSphCheckpoint(const std::string& path, const SphState& s, double time, std::size_t steps,
+                        double nextStep) {
   const std::string tmp = path + ".part";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
@@ -45,7 +48,8 @@ void writeSphCheckpoint(const std::string& path, const SphState& s, double time,
     throw std::runtime_error(path + ": cannot move the SPH checkpoint into place");
 }
 
-SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& steps, double& nextStep) {
+SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& steps,
+                           double& nextStep) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw InputError(path + ": cannot open the SPH checkpoint");
@@ -56,21 +60,26 @@ SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& s
   std::uint64_t head[2];
   if (bytes < 8 || !in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
     throw InputError(path + ": not a CraterKit SPH checkpoint (bad magic)");
-  if (!in.read(reinterpret_cast<char*>(head), sizeof head) || !in.read(reinterpret_cast<char*>(&time), sizeof time) ||
+  if (!in.read(reinterpret_cast<char*>(head), sizeof head) ||
+      !in.read(reinterpret_cast<char*>(&time), sizeof time) ||
       !in.read(reinterpret_cast<char*>(&nextStep), sizeof nextStep))
     throw InputError(path + ": the SPH checkpoint header is truncated");
   const std::uint64_t n = head[0];
   const std::uint64_t perParticle = 8 * (3 + 3 + 4 + 6 + 2) + 4;
   constexpr std::uint64_t header = 40;
-  if (bytes < header || n == 0 || n > (bytes - header) / perParticle || (bytes - header) != n * perParticle)
+  if (bytes < header || n == 0 || n > (bytes - header) / perParticle ||
+      (bytes - header) != n * perParticle)
     throw InputError(path + ": the SPH checkpoint's particle count (" + std::to_string(n) +
                      ") does not match its size of " + std::to_string(bytes) + " bytes");
   if (!std::isfinite(time) || !(nextStep > 0.0) || !std::isfinite(nextStep))
-    throw InputError(path + ": the SPH checkpoint's time or time step is not a finite positive number");
+    throw InputError(path +
+                     ": the SPH checkpoint's time or time step is not a finite positive number");
   steps = head[1];
   SphState s;
-  get(in, s.x, 3 * n, path), get(in, s.v, 3 * n, path), get(in, s.mass, n, path), get(in, s.rho, n, path);
-  get(in, s.u, n, path), get(in, s.h, n, path), get(in, s.S, 6 * n, path), get(in, s.alpha, n, path);
+  get(in, s.x, 3 * n, path), get(in, s.v, 3 * n, path), get(in, s.mass, n, path),
+      get(in, s.rho, n, path);
+  get(in, s.u, n, path), get(in, s.h, n, path), get(in, s.S, 6 * n, path),
+      get(in, s.alpha, n, path);
   get(in, s.damage, n, path);
   std::vector<std::int32_t> mat;
   get(in, mat, n, path);
@@ -85,13 +94,14 @@ SphRun::SphRun(const SphState& initial, const SphParams& params, std::size_t kep
 void SphRun::keep() {
   if (keptStates_ == 0 || kept_.count(solver_->time()))
     return;
-  kept_[solver_->time()] = Snapshot{solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep()};
+  kept_[solver_->time()] =
+      Snapshot{solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep()};
   while (kept_.size() > keptStates_)
     kept_.erase(kept_.begin());
 }
 
-const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress, const std::string& checkpointPath,
-                                   long long checkpointEvery) {
+const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress,
+                                   const std::string& checkpointPath, long long checkpointEvery) {
   if (time < solver_->time()) {
     auto it = kept_.upper_bound(time);
     if (it == kept_.begin()) {
@@ -110,7 +120,8 @@ const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress
     // A state behind the file's (a request for an earlier time) never overwrites it.
     if (!checkpointPath.empty() && checkpointEvery > 0 && solver_->time() > checkpointTime_ &&
         solver_->steps() - lastCheckpoint >= static_cast<std::size_t>(checkpointEvery)) {
-      writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep());
+      writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps(),
+                         solver_->stableStep());
       lastCheckpoint = solver_->steps();
       checkpointTime_ = solver_->time();
     }
@@ -118,7 +129,8 @@ const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress
   }
   if (!checkpointPath.empty() && checkpointEvery > 0 && solver_->steps() != lastCheckpoint &&
       solver_->time() > checkpointTime_) {
-    writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep());
+    writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps(),
+                       solver_->stableStep());
     checkpointTime_ = solver_->time();
   }
   keep();
@@ -130,11 +142,12 @@ void SphRun::resumeFrom(const std::string& checkpointPath) {
   std::size_t steps = 0;
   const SphState s = readSphCheckpoint(checkpointPath, t, steps, next);
   if (s.size() != initial_.size())
-    throw InputError(checkpointPath + ": the checkpoint has " + std::to_string(s.size()) + " particles, this set-up " +
-                     std::to_string(initial_.size()));
+    throw InputError(checkpointPath + ": the checkpoint has " + std::to_string(s.size()) +
+                     " particles, this set-up " + std::to_string(initial_.size()));
   for (int m : s.material)
     if (m < 0 || static_cast<std::size_t>(m) >= params_.materials.size())
-      throw InputError(checkpointPath + ": the checkpoint names a material this set-up does not have");
+      throw InputError(checkpointPath +
+                       ": the checkpoint names a material this set-up does not have");
   solver_ = std::make_unique<SphSolver>(s, params_);
   solver_->restore(t, steps, next);
   kept_.clear();

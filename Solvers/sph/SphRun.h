@@ -41,14 +41,17 @@ private:
   std::size_t keptStates_;
   std::unique_ptr<SphSolver> solver_;
   std::map<double, Snapshot> kept_;
-  double checkpointTime_ = -std::numeric_limits<double>::infinity(); // of the state in the checkpoint file
+  double checkpointTime_ =
+      -std::numeric_limits<double>::infinity(); // of the state in the checkpoint file
 };
 
 // Checkpoint files: "CKSPH1\n\0", particle count and steps (uint64), time and the next time
 // step (double), then the arrays x v m ρ u h S α D (double) and material (int32), native
 // byte order. Written to PATH.part and renamed, so a crash never leaves a half-written file.
-void writeSphCheckpoint(const std::string& path, const SphState& s, double time, std::size_t steps, double nextStep);
+void writeSphCheckpoint(const std::string& path, const SphState& s, double time, std::size_t steps,
+                        double nextStep);
 // Throws InputError naming the file and what is wrong with it.
-SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& steps, double& nextStep);
+SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& steps,
+                           double& nextStep);
 
 } // namespace craterkit

@@ -15,7 +15,8 @@
 
 namespace craterkit {
 
-void SphState::add(const double pos[3], const double vel[3], double m, double density, double energy, int mat) {
+void SphState::add(const double pos[3], const double vel[3], double m, double density,
+                   double energy, int mat) {
   for (int k = 0; k < 3; ++k) {
     x.push_back(pos[k]);
     v.push_back(vel[k]);
@@ -42,14 +43,16 @@ void SphParams::validate() const {
   if (!(courant > 0.0 && courant <= 1.0))
     throw InputError("SPH: the Courant number must be in (0, 1]");
   if (!(densityFloor < 1.0))
-    throw InputError("SPH: the density floor must be below 1 (a fraction of the reference bulk density)");
+    throw InputError(
+        "SPH: the density floor must be below 1 (a fraction of the reference bulk density)");
   if (!(forceFactor > 0.0 && forceFactor <= 1.0))
     throw InputError("SPH: the force time-step factor must be in (0, 1]");
   if (!(errorTolerance > 0.0 && errorTolerance <= 1.0))
     throw InputError("SPH: the error tolerance must be in (0, 1]");
   if (!(minTimeStep >= 0.0))
     throw InputError("SPH: the time-step floor must not be negative");
-  if (!(maxSmoothingGrowth == 0.0 || (maxSmoothingGrowth >= 1.0 && std::isfinite(maxSmoothingGrowth))))
+  if (!(maxSmoothingGrowth == 0.0 ||
+        (maxSmoothingGrowth >= 1.0 && std::isfinite(maxSmoothingGrowth))))
     throw InputError("SPH: the smoothing-length growth cap must be 0 (none) or at least 1");
   for (int k = 0; k < 3; ++k) {
     if (!std::isfinite(gravity[k]) || !std::isfinite(pointMassAt[k]))
@@ -69,8 +72,9 @@ void SphParams::validate() const {
 
 namespace {
 
-constexpr std::uint32_t kNoShift = 13; // image code (sx+1) + 3 (sy+1) + 9 (sz+1) of the particle itself
-constexpr int kMaxLevels = 16;         // levels of h in the neighbour grids (√2 apart)
+constexpr std::uint32_t kNoShift =
+    13;                        // image code (sx+1) + 3 (sy+1) + 9 (sz+1) of the particle itself
+constexpr int kMaxLevels = 16; // levels of h in the neighbour grids (√2 apart)
 
 // Loops cloned for x86-64-v4 (AVX-512) and chosen at run time where the processor has it;
 // elsewhere the generic code runs. The two differ only by rounding.
@@ -90,8 +94,8 @@ struct CandidateRange {
 // Which candidates particle a (at xa, with h and margin ha, ma; `self` its own entry) lists:
 // those within grow max(h_a, h_b) plus the larger margin. keep[k] is 1 for those; returns true
 // if one not listed lies within twice the margin (a near miss). One vector pass, no branches.
-CK_SIMD_CLONES bool listCandidates(const CandidateRange& c, const double* xa, double ha, double ma, double grow,
-                                   std::uint32_t self, std::uint8_t* keep) {
+CK_SIMD_CLONES bool listCandidates(const CandidateRange& c, const double* xa, double ha, double ma,
+                                   double grow, std::uint32_t self, std::uint8_t* keep) {
   const double x0 = xa[0], x1 = xa[1], x2 = xa[2];
   int nearMiss = 0;
 #pragma omp simd reduction(| : nearMiss)
@@ -112,8 +116,8 @@ CK_SIMD_CLONES bool listCandidates(const CandidateRange& c, const double* xa, do
 struct Rheology {
   enum Kind { Fluid, VonMises, DruckerPrager } kind = Fluid;
   double G = 0.0;
-  double yield = 0.0;            // von Mises: uniaxial yield stress Y0 (√(3 J2) ≤ Y0)
-  double dpK = 0.0, dpB3 = 0.0;  // Drucker–Prager: √J2 ≤ k + 3B p
+  double yield = 0.0;           // von Mises: uniaxial yield stress Y0 (√(3 J2) ≤ Y0)
+  double dpK = 0.0, dpB3 = 0.0; // Drucker–Prager: √J2 ≤ k + 3B p
   double alpha0 = 1.0, pe = 0.0, ps = 1.0;
   explicit Rheology(const Material& m) {
     G = m.shearModulus;
@@ -149,7 +153,8 @@ struct Rheology {
   }
 };
 
-double dot6(const double* a, const double* b) { // A:B for symmetric tensors stored xx yy zz xy xz yz
+double dot6(const double* a,
+            const double* b) { // A:B for symmetric tensors stored xx yy zz xy xz yz
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + 2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
 }
 
@@ -176,11 +181,13 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
     else if (mat.eos.model == EquationOfState::Model::StiffenedGas)
       rho0 = mat.eos.stiffRho0;
     hCapFactor_.push_back(rho0 > 0.0 && par_.maxSmoothingGrowth > 0.0
-                            ? par_.maxSmoothingGrowth * par_.kappa * std::cbrt(mat.distention / rho0)
-                            : 0.0);
+                              ? par_.maxSmoothingGrowth * par_.kappa *
+                                    std::cbrt(mat.distention / rho0)
+                              : 0.0);
     const double g = par_.maxSmoothingGrowth;
-    const double fraction =
-      par_.densityFloor >= 0.0 ? par_.densityFloor : g > 0.0 ? std::min(0.5, 1.0 / (g * g * g)) : 0.0;
+    const double fraction = par_.densityFloor >= 0.0 ? par_.densityFloor
+                            : g > 0.0                ? std::min(0.5, 1.0 / (g * g * g))
+                                                     : 0.0;
     rhoFloor_.push_back(rho0 > 0.0 ? fraction * rho0 / mat.distention : 0.0);
   }
   const std::size_t n = s_.size();
@@ -189,13 +196,14 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
   if (n >= (std::size_t(1) << 27))
     throw InputError("SPH: more than 2^27 particles");
   if (s_.x.size() != 3 * n || s_.v.size() != 3 * n || s_.rho.size() != n || s_.u.size() != n ||
-      s_.S.size() != 6 * n || s_.alpha.size() != n || s_.damage.size() != n || s_.material.size() != n)
+      s_.S.size() != 6 * n || s_.alpha.size() != n || s_.damage.size() != n ||
+      s_.material.size() != n)
     throw InputError("SPH: the particle arrays differ in length");
   s_.h.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::string which = "SPH: particle " + std::to_string(i);
-    if (!(s_.mass[i] > 0.0) || !(s_.rho[i] > 0.0) || !(s_.u[i] >= 0.0) || !std::isfinite(s_.mass[i]) ||
-        !std::isfinite(s_.rho[i]) || !std::isfinite(s_.u[i]))
+    if (!(s_.mass[i] > 0.0) || !(s_.rho[i] > 0.0) || !(s_.u[i] >= 0.0) ||
+        !std::isfinite(s_.mass[i]) || !std::isfinite(s_.rho[i]) || !std::isfinite(s_.u[i]))
       throw InputError(which + " has a non-positive mass or density or a negative energy");
     if (s_.material[i] < 0 || static_cast<std::size_t>(s_.material[i]) >= par_.materials.size())
       throw InputError(which + " has an unknown material index");
@@ -223,7 +231,8 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
 }
 
 void SphSolver::imageShift(std::uint32_t code, double d[3]) const {
-  const int sh[3] = {static_cast<int>(code % 3) - 1, static_cast<int>(code / 3 % 3) - 1, static_cast<int>(code / 9) - 1};
+  const int sh[3] = {static_cast<int>(code % 3) - 1, static_cast<int>(code / 3 % 3) - 1,
+                     static_cast<int>(code / 9) - 1};
   for (int k = 0; k < 3; ++k)
     d[k] = sh[k] * (par_.boxHi[k] - par_.boxLo[k]);
 }
@@ -249,9 +258,12 @@ void SphSolver::assignFlaws() {
     const double count = static_cast<double>(members.size());
     const std::size_t total = static_cast<std::size_t>(std::max(count, count * std::log(count)));
     std::size_t j = 1;
-    auto threshold = [&](std::size_t jj) { return std::pow(static_cast<double>(jj) / (mat.weibullK * volume), 1.0 / mat.weibullM); };
+    auto threshold = [&](std::size_t jj) {
+      return std::pow(static_cast<double>(jj) / (mat.weibullK * volume), 1.0 / mat.weibullM);
+    };
     for (; j <= total; ++j)
-      flaws[members[std::min(members.size() - 1, static_cast<std::size_t>(rng.uniform() * count))]].push_back(threshold(j));
+      flaws[members[std::min(members.size() - 1, static_cast<std::size_t>(rng.uniform() * count))]]
+          .push_back(threshold(j));
     for (std::size_t i : members)
       if (flaws[i].empty())
         flaws[i].push_back(threshold(j++));
@@ -264,7 +276,8 @@ void SphSolver::assignFlaws() {
   }
 }
 
-void SphSolver::integrateDamage(SphState& s, const SphState& from, double dt, const Rates& a, const Rates* b) const {
+void SphSolver::integrateDamage(SphState& s, const SphState& from, double dt, const Rates& a,
+                                const Rates* b) const {
   if (a.dDc.empty())
     return;
   for (std::size_t i = 0; i < s.size(); ++i) {
@@ -345,7 +358,8 @@ bool SphSolver::neighboursValid(const SphState& s, double dt) const {
     if (excluded(i) || D[i] < 0.5 * nb_.margin[i])
       continue;
     for (std::size_t l = 0; l < L; ++l)
-      if (muMin[l] < INFINITY && D[i] + (top[l] == i ? d2[l] : d1[l]) >= std::max(nb_.margin[i], muMin[l]))
+      if (muMin[l] < INFINITY &&
+          D[i] + (top[l] == i ? d2[l] : d1[l]) >= std::max(nb_.margin[i], muMin[l]))
         return false;
   }
   return true;
@@ -372,7 +386,8 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
           const double w = s.v[3 * i + k] + (k1_.dx.size() == s.v.size() ? k1_.dx[3 * i + k] : 0.0);
           w2 += w * w;
         }
-        nb_.margin[i] = std::max(par_.skin * s.h[i], std::min(16.0 * dt * std::sqrt(w2), 0.5 * s.h[i]));
+        nb_.margin[i] =
+            std::max(par_.skin * s.h[i], std::min(16.0 * dt * std::sqrt(w2), 0.5 * s.h[i]));
       }
       muMax = std::max(muMax, nb_.margin[i]);
     }
@@ -401,7 +416,8 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
           ok = shift[k] == 0 || par_.periodic[k];
         if (!ok)
           continue;
-        const std::uint32_t code = static_cast<std::uint32_t>((sx + 1) + 3 * (sy + 1) + 9 * (sz + 1));
+        const std::uint32_t code =
+            static_cast<std::uint32_t>((sx + 1) + 3 * (sy + 1) + 9 * (sz + 1));
         for (std::size_t i = 0; i < n; ++i) {
           if (nb_.out[i])
             continue;
@@ -409,7 +425,8 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
           bool near = true;
           for (int k = 0; k < 3 && near; ++k) {
             y[k] = s.x[3 * i + k] + shift[k] * (par_.boxHi[k] - par_.boxLo[k]);
-            near = !par_.periodic[k] || (y[k] >= par_.boxLo[k] - reach && y[k] <= par_.boxHi[k] + reach);
+            near = !par_.periodic[k] ||
+                   (y[k] >= par_.boxLo[k] - reach && y[k] <= par_.boxHi[k] + reach);
           }
           if (!near)
             continue;
@@ -428,7 +445,9 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
   if (hmax > std::sqrt(2.0) * hmin)
     levels = std::min(kMaxLevels, 1 + static_cast<int>(std::floor(2.0 * std::log2(hmax / hmin))));
   auto levelOf = [&](double h) {
-    return levels == 1 ? 0 : std::clamp(static_cast<int>(std::floor(2.0 * std::log2(hmax / h))), 0, levels - 1);
+    return levels == 1
+               ? 0
+               : std::clamp(static_cast<int>(std::floor(2.0 * std::log2(hmax / h))), 0, levels - 1);
   };
   nb_.levels = static_cast<std::size_t>(levels);
   nb_.level.assign(n, 0);
@@ -444,7 +463,8 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
     const int l = nb_.level[id[q] / 32];
     level[q] = static_cast<std::uint8_t>(l);
     levelH[static_cast<std::size_t>(l)] = std::max(levelH[static_cast<std::size_t>(l)], h);
-    levelMu[static_cast<std::size_t>(l)] = std::max(levelMu[static_cast<std::size_t>(l)], mu[id[q] / 32]);
+    levelMu[static_cast<std::size_t>(l)] =
+        std::max(levelMu[static_cast<std::size_t>(l)], mu[id[q] / 32]);
     ++levelSize[static_cast<std::size_t>(l) + 1];
   }
   // Sparse grids: cells of half the level's reach, keyed (z, y, x) in 64 bits and sorted, so
@@ -453,20 +473,25 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
   // copied in (level, cell) order, so a scan reads memory sequentially.
   std::vector<double> cellSize(static_cast<std::size_t>(levels));
   for (int l = 0; l < levels; ++l)
-    cellSize[static_cast<std::size_t>(l)] = 0.5 * (grow * levelH[static_cast<std::size_t>(l)] + levelMu[static_cast<std::size_t>(l)]);
+    cellSize[static_cast<std::size_t>(l)] =
+        0.5 * (grow * levelH[static_cast<std::size_t>(l)] + levelMu[static_cast<std::size_t>(l)]);
   double lo[3] = {INFINITY, INFINITY, INFINITY};
   for (std::size_t q = 0; q < m; ++q)
     for (int k = 0; k < 3; ++k) {
       if (!std::isfinite(pos[3 * q + k]))
-        throw std::runtime_error("SPH: particle " + std::to_string(id[q] / 32) + " has a non-finite position");
+        throw std::runtime_error("SPH: particle " + std::to_string(id[q] / 32) +
+                                 " has a non-finite position");
       lo[k] = std::min(lo[k], pos[3 * q + k]);
     }
   constexpr std::int64_t kAxis = (std::int64_t(1) << 21) - 1;
   auto coord = [&](double v, int k, int l) {
     return static_cast<std::int64_t>(
-        std::clamp(std::floor((v - lo[k]) / cellSize[static_cast<std::size_t>(l)]), 0.0, static_cast<double>(kAxis)));
+        std::clamp(std::floor((v - lo[k]) / cellSize[static_cast<std::size_t>(l)]), 0.0,
+                   static_cast<double>(kAxis)));
   };
-  auto key = [](std::int64_t cx, std::int64_t cy, std::int64_t cz) { return (cz << 42) | (cy << 21) | cx; };
+  auto key = [](std::int64_t cx, std::int64_t cy, std::int64_t cz) {
+    return (cz << 42) | (cy << 21) | cx;
+  };
   for (int l = 0; l < levels; ++l)
     levelSize[static_cast<std::size_t>(l) + 1] += levelSize[static_cast<std::size_t>(l)];
   std::vector<std::pair<std::int64_t, std::uint32_t>> order(m);
@@ -475,19 +500,24 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
     for (std::size_t q = 0; q < m; ++q) {
       const int l = level[q];
       order[at[static_cast<std::size_t>(l)]++] = {
-          key(coord(pos[3 * q], 0, l), coord(pos[3 * q + 1], 1, l), coord(pos[3 * q + 2], 2, l)), static_cast<std::uint32_t>(q)};
+          key(coord(pos[3 * q], 0, l), coord(pos[3 * q + 1], 1, l), coord(pos[3 * q + 2], 2, l)),
+          static_cast<std::uint32_t>(q)};
     }
   }
   for (int l = 0; l < levels; ++l)
     std::sort(order.begin() + static_cast<std::ptrdiff_t>(levelSize[static_cast<std::size_t>(l)]),
-              order.begin() + static_cast<std::ptrdiff_t>(levelSize[static_cast<std::size_t>(l) + 1]));
-  std::vector<double> spx(m), spy(m), spz(m), sh(m), smu(m); // positions, h and margins in (level, cell) order
+              order.begin() +
+                  static_cast<std::ptrdiff_t>(levelSize[static_cast<std::size_t>(l) + 1]));
+  std::vector<double> spx(m), spy(m), spz(m), sh(m),
+      smu(m); // positions, h and margins in (level, cell) order
   std::vector<std::uint32_t> sid(m);
-  std::vector<std::int64_t> cellKey;                                        // distinct cells, ascending per level
-  std::vector<std::uint32_t> cellStart;                                     // their first entry in the sorted arrays, plus the end
-  std::vector<std::size_t> levelCells(static_cast<std::size_t>(levels) + 1, 0); // each level's range in cellKey
+  std::vector<std::int64_t> cellKey;    // distinct cells, ascending per level
+  std::vector<std::uint32_t> cellStart; // their first entry in the sorted arrays, plus the end
+  std::vector<std::size_t> levelCells(static_cast<std::size_t>(levels) + 1,
+                                      0); // each level's range in cellKey
   for (int l = 0; l < levels; ++l) {
-    for (std::size_t r = levelSize[static_cast<std::size_t>(l)]; r < levelSize[static_cast<std::size_t>(l) + 1]; ++r) {
+    for (std::size_t r = levelSize[static_cast<std::size_t>(l)];
+         r < levelSize[static_cast<std::size_t>(l) + 1]; ++r) {
       const std::uint32_t q = order[r].second;
       spx[r] = pos[3 * q], spy[r] = pos[3 * q + 1], spz[r] = pos[3 * q + 2];
       sid[r] = id[q];
@@ -502,7 +532,9 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
   }
   cellStart.push_back(static_cast<std::uint32_t>(m));
   // Calls f(begin, end) for the sorted entries of level l in the cells within R of x.
-  auto empty = [&](int l) { return levelSize[static_cast<std::size_t>(l)] == levelSize[static_cast<std::size_t>(l) + 1]; };
+  auto empty = [&](int l) {
+    return levelSize[static_cast<std::size_t>(l)] == levelSize[static_cast<std::size_t>(l) + 1];
+  };
   auto forCells = [&](const double* x, double R, int l, auto&& f) {
     if (empty(l))
       return;
@@ -511,8 +543,10 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
       c0[k] = coord(x[k] - R, k, l);
       c1[k] = coord(x[k] + R, k, l);
     }
-    const auto first = cellKey.begin() + static_cast<std::ptrdiff_t>(levelCells[static_cast<std::size_t>(l)]);
-    const auto end = cellKey.begin() + static_cast<std::ptrdiff_t>(levelCells[static_cast<std::size_t>(l) + 1]);
+    const auto first =
+        cellKey.begin() + static_cast<std::ptrdiff_t>(levelCells[static_cast<std::size_t>(l)]);
+    const auto end =
+        cellKey.begin() + static_cast<std::ptrdiff_t>(levelCells[static_cast<std::size_t>(l) + 1]);
     for (std::int64_t cz = c0[2]; cz <= c1[2]; ++cz)
       for (std::int64_t cy = c0[1]; cy <= c1[1]; ++cy) {
         // The row's cells are contiguous in key order: one search for its first.
@@ -522,13 +556,15 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
         while (stop != end && *stop <= last)
           ++stop;
         if (stop != it)
-          f(cellStart[static_cast<std::size_t>(it - cellKey.begin())], cellStart[static_cast<std::size_t>(stop - cellKey.begin())]);
+          f(cellStart[static_cast<std::size_t>(it - cellKey.begin())],
+            cellStart[static_cast<std::size_t>(stop - cellKey.begin())]);
       }
   };
   struct Handed {
     std::uint32_t to, entry;
   };
-  std::vector<std::vector<std::uint8_t>> keepOf(static_cast<std::size_t>(omp_get_max_threads())); // per thread: which candidates are listed
+  std::vector<std::vector<std::uint8_t>> keepOf(
+      static_cast<std::size_t>(omp_get_max_threads())); // per thread: which candidates are listed
   // Lists a's neighbours in its own and the coarser levels (the pairs with coarser ones also
   // into `handed`, as entries of the partner's list); true if an unlisted particle came within
   // twice the margin.
@@ -539,7 +575,8 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
     const int la = nb_.level[a];
     const std::uint32_t self = static_cast<std::uint32_t>(a * 32 + kNoShift);
     for (int l = 0; l <= la; ++l) {
-      const double R = grow * std::max(ha, levelH[static_cast<std::size_t>(l)]) + std::max(ma, levelMu[static_cast<std::size_t>(l)]);
+      const double R = grow * std::max(ha, levelH[static_cast<std::size_t>(l)]) +
+                       std::max(ma, levelMu[static_cast<std::size_t>(l)]);
       forCells(xa, R, l, [&](std::uint32_t begin, std::uint32_t end) {
         // The candidates' tests in one vector pass, then the list advances past those in
         // range (branch-free: every candidate is written).
@@ -547,8 +584,13 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
         std::vector<std::uint8_t>& keep = keepOf[omp_get_thread_num()];
         if (keep.size() < count)
           keep.resize(count);
-        const CandidateRange cr{spx.data() + begin, spy.data() + begin, spz.data() + begin, sh.data() + begin,
-                                smu.data() + begin, sid.data() + begin, count};
+        const CandidateRange cr{spx.data() + begin,
+                                spy.data() + begin,
+                                spz.data() + begin,
+                                sh.data() + begin,
+                                smu.data() + begin,
+                                sid.data() + begin,
+                                count};
         nearMiss |= listCandidates(cr, xa, ha, ma, grow, self, keep.data());
         std::size_t at = out.size();
         out.resize(at + count);
@@ -588,8 +630,9 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
       const double range = grow * std::max(ha, levelH[static_cast<std::size_t>(l)]);
       const double ml = std::max(ma, levelMu[static_cast<std::size_t>(l)]);
       const double R = l <= la ? 2.0 * (range + ml) : range + 3.0 * ml;
-      if (R > 8.0 * cellSize[static_cast<std::size_t>(l)]) { // a level far finer than a: too many cells
-        spare = std::min(spare, ma);                         // to search; every unlisted pair has a's margin
+      if (R >
+          8.0 * cellSize[static_cast<std::size_t>(l)]) { // a level far finer than a: too many cells
+        spare = std::min(spare, ma); // to search; every unlisted pair has a's margin
         continue;
       }
       spare = std::min(spare, R - range);
@@ -598,8 +641,9 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
           const std::uint32_t e = sid[r];
           if (e / 32 == a && e % 32 == kNoShift)
             continue;
-          const double d = std::sqrt((xa[0] - spx[r]) * (xa[0] - spx[r]) + (xa[1] - spy[r]) * (xa[1] - spy[r]) +
-                                     (xa[2] - spz[r]) * (xa[2] - spz[r]));
+          const double d =
+              std::sqrt((xa[0] - spx[r]) * (xa[0] - spx[r]) + (xa[1] - spy[r]) * (xa[1] - spy[r]) +
+                        (xa[2] - spz[r]) * (xa[2] - spz[r]));
           const double pairRange = grow * std::max(ha, sh[r]);
           if (d >= pairRange + std::max(ma, smu[r])) // listed ones are not spare
             spare = std::min(spare, d - pairRange);
@@ -620,7 +664,8 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
   std::vector<std::vector<Handed>> handedBy(static_cast<std::size_t>(threads));
 #pragma omp parallel num_threads(threads)
   {
-    const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()), nt = static_cast<std::size_t>(omp_get_num_threads());
+    const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()),
+                      nt = static_cast<std::size_t>(omp_get_num_threads());
     const std::size_t a0 = n * t / nt, a1 = n * (t + 1) / nt;
     std::vector<std::uint32_t>& out = buffers[t];
     std::vector<Handed>& handed = handedBy[t];
@@ -641,7 +686,8 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
   for (const auto& h : handedBy)
     total += h.size();
   if (total > 0xF0000000u)
-    throw std::runtime_error("SPH: too many neighbour pairs (the smoothing lengths have grown too large)");
+    throw std::runtime_error(
+        "SPH: too many neighbour pairs (the smoothing lengths have grown too large)");
   std::vector<std::uint32_t> own(nb_.start.begin() + 1, nb_.start.end());
   for (const auto& h : handedBy)
     for (const Handed& p : h)
@@ -657,7 +703,8 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
       continue;
     while (k == buffers[bi].size())
       ++bi, k = 0;
-    std::copy(buffers[bi].begin() + static_cast<std::ptrdiff_t>(k), buffers[bi].begin() + static_cast<std::ptrdiff_t>(k + own[a]),
+    std::copy(buffers[bi].begin() + static_cast<std::ptrdiff_t>(k),
+              buffers[bi].begin() + static_cast<std::ptrdiff_t>(k + own[a]),
               nb_.entry.begin() + static_cast<std::ptrdiff_t>(nb_.start[a]));
     k += own[a];
   }
@@ -667,7 +714,8 @@ void SphSolver::buildNeighbours(const SphState& s, double dt, bool margins) {
 }
 
 std::vector<std::uint32_t> SphSolver::neighboursOf(std::size_t a) const {
-  std::vector<std::uint32_t> list(nb_.entry.begin() + nb_.start[a], nb_.entry.begin() + nb_.start[a + 1]);
+  std::vector<std::uint32_t> list(nb_.entry.begin() + nb_.start[a],
+                                  nb_.entry.begin() + nb_.start[a + 1]);
   std::sort(list.begin(), list.end());
   return list;
 }
@@ -818,7 +866,8 @@ bool SphSolver::outside(const SphState& s, std::size_t i) const {
   if (par_.domainRadius <= 0.0)
     return false;
   const double* x = &s.x[3 * i];
-  const double dx = x[0] - par_.domainCentre[0], dy = x[1] - par_.domainCentre[1], dz = x[2] - par_.domainCentre[2];
+  const double dx = x[0] - par_.domainCentre[0], dy = x[1] - par_.domainCentre[1],
+               dz = x[2] - par_.domainCentre[2];
   return dx * dx + dy * dy + dz * dz > par_.domainRadius * par_.domainRadius;
 }
 
@@ -836,7 +885,7 @@ struct Packed {
   double h, rho, m, vol; // vol = m/ρ
   double pr;             // p/ρ²
   double c;
-  double s[6];           // S/ρ²
+  double s[6]; // S/ρ²
 };
 // Per-thread buffers of one particle's interacting neighbours.
 struct Scratch {
@@ -864,9 +913,8 @@ struct PairConstants {
 // wide (27 % less time for the SCI-like run here; AVX2, with 16 registers, spills and gains
 // nothing). Elsewhere the generic code runs. The two differ only by rounding.
 template <class K, bool Xsph>
-CK_SIMD_CLONES PairSums
-pairSums(const Packed* Pp, const Packed& A, const std::uint32_t* entries, std::uint32_t count, Scratch& w,
-         const PairConstants& pc) {
+CK_SIMD_CLONES PairSums pairSums(const Packed* Pp, const Packed& A, const std::uint32_t* entries,
+                                 std::uint32_t count, Scratch& w, const PairConstants& pc) {
   // Pass 1: the listed neighbours inside the pair's support, with their separations.
   if (w.idx.size() < count)
     w.resize(count);
@@ -891,7 +939,8 @@ pairSums(const Packed* Pp, const Packed& A, const std::uint32_t* entries, std::u
   }
   // Pass 2: the pair terms, branch-free so that the compiler vectorises the loop.
   double acc0 = 0, acc1 = 0, acc2 = 0, dr = 0, de = 0, sig = 0;
-  double g0 = 0, g1 = 0, g2 = 0, g3 = 0, g4 = 0, g5 = 0, g6 = 0, g7 = 0, g8 = 0, xs0 = 0, xs1 = 0, xs2 = 0;
+  double g0 = 0, g1 = 0, g2 = 0, g3 = 0, g4 = 0, g5 = 0, g6 = 0, g7 = 0, g8 = 0, xs0 = 0, xs1 = 0,
+         xs2 = 0;
   const std::uint32_t* idx = w.idx.data();
   const double *RX = w.rx.data(), *RY = w.ry.data(), *RZ = w.rz.data(), *R2 = w.r2.data();
   const double* sa = A.s;
@@ -935,13 +984,14 @@ pairSums(const Packed* Pp, const Packed& A, const std::uint32_t* entries, std::u
       xs0 -= wx2 * vx, xs1 -= wx2 * vy, xs2 -= wx2 * vz;
     }
   }
-  return PairSums{{acc0, acc1, acc2}, dr, de, {g0, g1, g2, g3, g4, g5, g6, g7, g8}, {xs0, xs1, xs2}, sig};
+  return PairSums{{acc0, acc1, acc2}, dr, de, {g0, g1, g2, g3, g4, g5, g6, g7, g8},
+                  {xs0, xs1, xs2},    sig};
 }
 } // namespace
 
 template <class K, bool Xsph>
-double SphSolver::rates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c,
-                        Rates& r) const {
+double SphSolver::rates(const SphState& s, const std::vector<double>& p,
+                        const std::vector<double>& c, Rates& r) const {
   const std::size_t n = s.size();
   r.dx.assign(par_.xsph > 0.0 ? 3 * n : 0, 0.0);
   r.dv.resize(3 * n);
@@ -953,11 +1003,13 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
   r.capD.assign(hasFlaws ? n : 0, 0.0);
   std::vector<double> G(par_.materials.size());
   for (std::size_t m = 0; m < G.size(); ++m)
-    G[m] = par_.materials[m].strength == Material::Strength::None ? 0.0 : par_.materials[m].shearModulus;
+    G[m] = par_.materials[m].strength == Material::Strength::None ? 0.0
+                                                                  : par_.materials[m].shearModulus;
   std::vector<char> rigidMat(par_.materials.size());
   for (std::size_t m = 0; m < rigidMat.size(); ++m)
     rigidMat[m] = par_.materials[m].rigid;
-  static thread_local std::vector<Packed> P; // reused: no allocation in the step loop; workers use Pp
+  static thread_local std::vector<Packed>
+      P; // reused: no allocation in the step loop; workers use Pp
   P.resize(n);
   Packed* const Pw = P.data();
   bool anyStress = false;
@@ -977,11 +1029,17 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
     anyStress = anyStress || G[static_cast<std::size_t>(s.material[i])] > 0.0;
   }
   const Packed* Pp = Pw;
-  static thread_local std::vector<Scratch> scratchOfCaller; // the calling thread's; workers use the pointer
+  static thread_local std::vector<Scratch>
+      scratchOfCaller; // the calling thread's; workers use the pointer
   scratchOfCaller.resize(static_cast<std::size_t>(omp_get_max_threads()));
   Scratch* const scratch = scratchOfCaller.data();
-  PairConstants pc{par_.alpha, par_.beta, par_.xsph, anyStress ? 1.0 : 0.0, 0.0,
-                    par_.periodic[0] || par_.periodic[1] || par_.periodic[2], {0.0, 0.0, 0.0}};
+  PairConstants pc{par_.alpha,
+                   par_.beta,
+                   par_.xsph,
+                   anyStress ? 1.0 : 0.0,
+                   0.0,
+                   par_.periodic[0] || par_.periodic[1] || par_.periodic[2],
+                   {0.0, 0.0, 0.0}};
   for (int k = 0; k < 3; ++k)
     pc.period[k] = par_.periodic[k] ? par_.boxHi[k] - par_.boxLo[k] : 0.0;
   double maxSignal = 0.0;
@@ -996,7 +1054,8 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
     pcA.gradOn = solid ? 1.0 : 0.0;
     const std::uint32_t first = nb_.start[a];
     const PairSums sums =
-      pairSums<K, Xsph>(Pp, A, nb_.entry.data() + first, nb_.start[a + 1] - first, scratch[omp_get_thread_num()], pcA);
+        pairSums<K, Xsph>(Pp, A, nb_.entry.data() + first, nb_.start[a + 1] - first,
+                          scratch[omp_get_thread_num()], pcA);
     const double* acc = sums.acc;
     const double* xs = sums.xs;
     const double* grad = sums.grad;
@@ -1005,7 +1064,8 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
     const double* Sa = &s.S[6 * a];
     double ext[3] = {par_.gravity[0], par_.gravity[1], par_.gravity[2]};
     if (par_.pointMassGM > 0.0) {
-      const double dx = xa[0] - par_.pointMassAt[0], dy = xa[1] - par_.pointMassAt[1], dz = xa[2] - par_.pointMassAt[2];
+      const double dx = xa[0] - par_.pointMassAt[0], dy = xa[1] - par_.pointMassAt[1],
+                   dz = xa[2] - par_.pointMassAt[2];
       const double r2 = dx * dx + dy * dy + dz * dz;
       if (r2 > 0.0) {
         const double k = -par_.pointMassGM / (r2 * std::sqrt(r2));
@@ -1025,8 +1085,10 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
       const double Gm = G[static_cast<std::size_t>(s.material[a])];
       // Strain rate ε̇ = sym(∇v), rotation rate R^{αβ} = ½(∂_β v^α − ∂_α v^β).
       const double exx = grad[0], eyy = grad[4], ezz = grad[8];
-      const double exy = 0.5 * (grad[1] + grad[3]), exz = 0.5 * (grad[2] + grad[6]), eyz = 0.5 * (grad[5] + grad[7]);
-      const double wxy = 0.5 * (grad[1] - grad[3]), wxz = 0.5 * (grad[2] - grad[6]), wyz = 0.5 * (grad[5] - grad[7]);
+      const double exy = 0.5 * (grad[1] + grad[3]), exz = 0.5 * (grad[2] + grad[6]),
+                   eyz = 0.5 * (grad[5] + grad[7]);
+      const double wxy = 0.5 * (grad[1] - grad[3]), wxz = 0.5 * (grad[2] - grad[6]),
+                   wyz = 0.5 * (grad[5] - grad[7]);
       const double tr = (exx + eyy + ezz) / 3.0;
       // Full tensors for R S − S R (R antisymmetric, S symmetric: the result is symmetric).
       const double Sm[3][3] = {{Sa[0], Sa[3], Sa[4]}, {Sa[3], Sa[1], Sa[5]}, {Sa[4], Sa[5], Sa[2]}};
@@ -1077,17 +1139,20 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p, const s
   return maxSignal;
 }
 
-double SphSolver::computeRates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c,
-                               Rates& r) const {
+double SphSolver::computeRates(const SphState& s, const std::vector<double>& p,
+                               const std::vector<double>& c, Rates& r) const {
   if (par_.kernel == SphParams::Kernel::WendlandC2)
-    return par_.xsph > 0.0 ? rates<WendlandC2, true>(s, p, c, r) : rates<WendlandC2, false>(s, p, c, r);
-  return par_.xsph > 0.0 ? rates<CubicSpline, true>(s, p, c, r) : rates<CubicSpline, false>(s, p, c, r);
+    return par_.xsph > 0.0 ? rates<WendlandC2, true>(s, p, c, r)
+                           : rates<WendlandC2, false>(s, p, c, r);
+  return par_.xsph > 0.0 ? rates<CubicSpline, true>(s, p, c, r)
+                         : rates<CubicSpline, false>(s, p, c, r);
 }
 
 double SphSolver::limitStep(const SphState& s, const Rates& r, double maxSignal) const {
   double dt = maxSignal > 0.0 ? par_.courant / maxSignal : INFINITY;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    const double a2 = r.dv[3 * i] * r.dv[3 * i] + r.dv[3 * i + 1] * r.dv[3 * i + 1] + r.dv[3 * i + 2] * r.dv[3 * i + 2];
+    const double a2 = r.dv[3 * i] * r.dv[3 * i] + r.dv[3 * i + 1] * r.dv[3 * i + 1] +
+                      r.dv[3 * i + 2] * r.dv[3 * i + 2];
     if (a2 > 0.0)
       dt = std::min(dt, par_.forceFactor * std::sqrt(s.h[i] / std::sqrt(a2)));
   }
@@ -1115,8 +1180,9 @@ void SphSolver::enterLateStage(bool scaleStress) {
       rho0 = eos.murnaghanRho0;
     else
       continue; // gases keep their law
-    const double Kold = mat.bulkModulus > 0.0 ? mat.bulkModulus
-                        : eos.model == EquationOfState::Model::Tillotson ? eos.tillotson.A : eos.murnaghanK0;
+    const double Kold = mat.bulkModulus > 0.0                            ? mat.bulkModulus
+                        : eos.model == EquationOfState::Model::Tillotson ? eos.tillotson.A
+                                                                         : eos.murnaghanK0;
     const double K = rho0 * c * c;
     eos.model = EquationOfState::Model::Murnaghan;
     eos.murnaghanRho0 = rho0;
@@ -1165,9 +1231,10 @@ double SphSolver::step(double dt) {
   std::size_t worst = 0;
   for (int attempt = 0;; ++attempt) {
     if (!(dt > 0.0) || !std::isfinite(dt) || dt < par_.minTimeStep || attempt > 60)
-      throw std::runtime_error("SPH: the time step collapsed to " + std::to_string(dt) + " s at t = " +
-                               std::to_string(time_) + " s near particle " + std::to_string(worst) + " (x = " +
-                               std::to_string(s_.x[3 * worst]) + ", " + std::to_string(s_.x[3 * worst + 1]) + ", " +
+      throw std::runtime_error("SPH: the time step collapsed to " + std::to_string(dt) +
+                               " s at t = " + std::to_string(time_) + " s near particle " +
+                               std::to_string(worst) + " (x = " + std::to_string(s_.x[3 * worst]) +
+                               ", " + std::to_string(s_.x[3 * worst + 1]) + ", " +
                                std::to_string(s_.x[3 * worst + 2]) + " m, material " +
                                std::to_string(s_.material[worst]) + ")");
     // Rebuild the list when this step's motion (dt |v|, plus what the velocity gains) could
@@ -1225,7 +1292,8 @@ double SphSolver::step(double dt) {
     dt *= std::max(0.1, 0.9 * std::sqrt(par_.errorTolerance / err));
   }
   for (std::size_t i = 0; i < 3 * n; ++i) {
-    s_.x[i] += 0.5 * dt * (s_.v[i] + mid.v[i] + (xs ? k1_.dx[i] + k2.dx[i] : 0.0)); // before v changes
+    s_.x[i] +=
+        0.5 * dt * (s_.v[i] + mid.v[i] + (xs ? k1_.dx[i] + k2.dx[i] : 0.0)); // before v changes
     s_.v[i] += 0.5 * dt * (k1_.dv[i] + k2.dv[i]);
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -1234,12 +1302,14 @@ double SphSolver::step(double dt) {
     s_.u[i] = std::max(0.0, s_.u[i] + 0.5 * dt * (k1_.du[i] + k2.du[i]));
     s_.alpha[i] = mid.alpha[i]; // compaction is kept from the predictor and can go on below
     if (!(s_.rho[i] > 0.0) || !std::isfinite(s_.rho[i]) || !std::isfinite(s_.u[i]))
-      throw std::runtime_error("SPH: particle " + std::to_string(i) + " has a non-positive or non-finite density or energy at t = " +
+      throw std::runtime_error("SPH: particle " + std::to_string(i) +
+                               " has a non-positive or non-finite density or energy at t = " +
                                std::to_string(time_ + dt) + " s");
   }
   for (std::size_t i = 0; i < 6 * n; ++i)
     s_.S[i] += 0.5 * dt * (k1_.dS[i] + k2.dS[i]);
-  integrateDamage(s_, s_, dt, k1_, &k2); // reads each particle's start-of-step damage before writing it
+  integrateDamage(s_, s_, dt, k1_,
+                  &k2); // reads each particle's start-of-step damage before writing it
   settle(s_, p_, c_);
   const double signal = computeRates(s_, p_, c_, k1_);
   const double grow = err > 0.0 ? std::min(2.0, 0.9 * std::sqrt(par_.errorTolerance / err)) : 2.0;
@@ -1260,7 +1330,8 @@ double SphSolver::kineticEnergy() const {
   double e = 0.0;
   for (std::size_t i = 0; i < s_.size(); ++i)
     e += 0.5 * s_.mass[i] *
-         (s_.v[3 * i] * s_.v[3 * i] + s_.v[3 * i + 1] * s_.v[3 * i + 1] + s_.v[3 * i + 2] * s_.v[3 * i + 2]);
+         (s_.v[3 * i] * s_.v[3 * i] + s_.v[3 * i + 1] * s_.v[3 * i + 1] +
+          s_.v[3 * i + 2] * s_.v[3 * i + 2]);
   return e;
 }
 
@@ -1277,7 +1348,8 @@ double SphSolver::potentialEnergy() const {
     const double* x = &s_.x[3 * i];
     e -= s_.mass[i] * (par_.gravity[0] * x[0] + par_.gravity[1] * x[1] + par_.gravity[2] * x[2]);
     if (par_.pointMassGM > 0.0) {
-      const double dx = x[0] - par_.pointMassAt[0], dy = x[1] - par_.pointMassAt[1], dz = x[2] - par_.pointMassAt[2];
+      const double dx = x[0] - par_.pointMassAt[0], dy = x[1] - par_.pointMassAt[1],
+                   dz = x[2] - par_.pointMassAt[2];
       e -= s_.mass[i] * par_.pointMassGM / std::sqrt(dx * dx + dy * dy + dz * dz);
     }
   }

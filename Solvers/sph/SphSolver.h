@@ -5,10 +5,10 @@
 // deviatoric stress from Hooke's law with the Jaumann rate; strength: von Mises for metals,
 // Drucker–Prager matched to the Mohr–Coulomb compression cone for granular material (§2.5);
 // P–α porosity with the quadratic crush curve (§2.6); Grady–Kipp fracture (§2.7: Weibull
-// flaws, damage D growing as d(D^⅓)/dt = n_act c_g / R_s, weakening tension and shear); equations of state by
-// material; smoothing length following the density (h = κ (m/ρ)^{1/3}, support h); periodic or
-// open boundaries; uniform or point-mass gravity; Heun's predictor–corrector (RK2) with the
-// Courant and force time steps and error control (a step whose Euler predictor and Heun
+// flaws, damage D growing as d(D^⅓)/dt = n_act c_g / R_s, weakening tension and shear); equations
+// of state by material; smoothing length following the density (h = κ (m/ρ)^{1/3}, support h);
+// periodic or open boundaries; uniform or point-mass gravity; Heun's predictor–corrector (RK2) with
+// the Courant and force time steps and error control (a step whose Euler predictor and Heun
 // corrector differ by more than a tolerance is taken again, shorter).
 //
 // Neighbours: a Verlet list built from cell lists, one grid per level of h (√2 apart, so a
@@ -37,7 +37,8 @@ struct SphState {
   std::vector<int> material;
   std::size_t size() const { return mass.size(); }
   // A particle at rest in stress, with no pores and no damage.
-  void add(const double pos[3], const double vel[3], double m, double density, double energy, int mat);
+  void add(const double pos[3], const double vel[3], double m, double density, double energy,
+           int mat);
 };
 
 struct SphParams {
@@ -59,29 +60,32 @@ struct SphParams {
   // dominates the neighbours' velocity gradients, and at last its density goes negative.
   double densityFloor = -1.0;
   double courant = 0.3;
-  double forceFactor = 0.2;        // Δt ≤ forceFactor sqrt(h / |a|)
-  std::uint64_t fractureSeed = 1;  // random assignment of Grady–Kipp flaws to particles
-  double skin = 0.15;               // each particle's neighbour-list margin, in units of its h (fast ones get more)
-  bool rebuildEveryStep = false;    // no list kept over steps (to check that keeping them changes nothing)
-  double errorTolerance = 0.02;    // largest relative Euler–Heun difference of a step (else retaken shorter)
-  double minTimeStep = 0.0;        // a step below this stops the run (0: only a non-positive step)
-  bool summationDensity = false;   // ρ = Σ m W (gases) instead of the integrated continuity equation
-  double gravity[3] = {0, 0, 0};   // uniform, m/s²
-  double pointMassGM = 0.0;        // m³/s², a point mass at pointMassAt (0: none)
+  double forceFactor = 0.2;       // Δt ≤ forceFactor sqrt(h / |a|)
+  std::uint64_t fractureSeed = 1; // random assignment of Grady–Kipp flaws to particles
+  double skin =
+      0.15; // each particle's neighbour-list margin, in units of its h (fast ones get more)
+  bool rebuildEveryStep =
+      false; // no list kept over steps (to check that keeping them changes nothing)
+  double errorTolerance =
+      0.02; // largest relative Euler–Heun difference of a step (else retaken shorter)
+  double minTimeStep = 0.0;      // a step below this stops the run (0: only a non-positive step)
+  bool summationDensity = false; // ρ = Σ m W (gases) instead of the integrated continuity equation
+  double gravity[3] = {0, 0, 0}; // uniform, m/s²
+  double pointMassGM = 0.0;      // m³/s², a point mass at pointMassAt (0: none)
   double pointMassAt[3] = {0, 0, 0};
   bool periodic[3] = {false, false, false};
   double boxLo[3] = {0, 0, 0}, boxHi[3] = {1, 1, 1}; // the periodic cell
   // Late-stage scheme (after Raducan & Jutzi 2022; PHYSICS.md §2.8): at lateStageTime (negative:
-  // never) every Tillotson or Murnaghan material switches to the linear p = K (α ρ / ρ0 − 1) / α with
-  // K = ρ0 c², c = lateStageSoundSpeed, keeping its Poisson ratio (so G falls by the same factor,
-  // and each particle's deviatoric stress is scaled by it: the elastic strain is unchanged); the
-  // distention is frozen. The Courant step grows by about the ratio of the old and new sound
-  // speeds, so a run can follow the slow, gravity-driven crater growth after the shock.
-  double lateStageTime = -1.0;       // s
+  // never) every Tillotson or Murnaghan material switches to the linear p = K (α ρ / ρ0 − 1) / α
+  // with K = ρ0 c², c = lateStageSoundSpeed, keeping its Poisson ratio (so G falls by the same
+  // factor, and each particle's deviatoric stress is scaled by it: the elastic strain is
+  // unchanged); the distention is frozen. The Courant step grows by about the ratio of the old and
+  // new sound speeds, so a run can follow the slow, gravity-driven crater growth after the shock.
+  double lateStageTime = -1.0; // s
   // Particles farther than domainRadius from domainCentre (0: no limit) have left the SPH
   // domain: they get no neighbours and fly ballistically (under gravity) until they return,
   // so fast ejecta neither widen the neighbour lists nor force a new list every step.
-  double domainRadius = 0.0;         // m
+  double domainRadius = 0.0; // m
   double domainCentre[3] = {0, 0, 0};
   double lateStageSoundSpeed = 100.0; // m/s
   void validate() const;
@@ -127,9 +131,11 @@ private:
     std::vector<std::uint32_t> entry; // neighbour index * 32 + periodic image code
     std::vector<double> x, h;         // positions and smoothing lengths at the build
     std::vector<char> out;            // outside the domain at the build (no neighbours)
-    std::vector<double> clearance;    // > 0: no unlisted particle within twice the margin; this much to spare (m)
-    std::vector<double> margin;       // each particle's: a pair is listed within the larger of its two (m)
-    std::vector<std::uint8_t> level;  // each particle's level of h (0: the largest)
+    std::vector<double>
+        clearance; // > 0: no unlisted particle within twice the margin; this much to spare (m)
+    std::vector<double>
+        margin; // each particle's: a pair is listed within the larger of its two (m)
+    std::vector<std::uint8_t> level; // each particle's level of h (0: the largest)
     std::size_t levels = 1;
     double grow = 1.0;
   };
@@ -137,7 +143,8 @@ private:
   // Switches the materials to the late-stage equations of state (scaling each particle's
   // deviatoric stress when `scaleStress`), then recomputes the current state's rates.
   void enterLateStage(bool scaleStress);
-  void integrateDamage(SphState& s, const SphState& from, double dt, const Rates& a, const Rates* b) const;
+  void integrateDamage(SphState& s, const SphState& from, double dt, const Rates& a,
+                       const Rates* b) const;
   // Lists the pairs within grow max(h_a, h_b) plus the larger of their margins: each
   // particle's is skin h, or more for one that moves fast in steps of dt (none when !margins).
   void buildNeighbours(const SphState& s, double dt, bool margins = true);
@@ -148,12 +155,12 @@ private:
   void eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c) const;
   void densityBySummation(SphState& s) const;
   double smoothingLength(const SphState& s, std::size_t i) const; // κ (m/ρ)^{1/3}, capped
-  bool outside(const SphState& s, std::size_t i) const;            // beyond domainRadius
+  bool outside(const SphState& s, std::size_t i) const;           // beyond domainRadius
   // Rates of s; returns the largest signal speed over h/2.
   double computeRates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c,
                       Rates& r) const;
-  template <class K, bool Xsph>
-  double rates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c, Rates& r) const;
+  template <class K, bool Xsph> double rates(const SphState& s, const std::vector<double>& p,
+                                             const std::vector<double>& c, Rates& r) const;
   template <class K> void summation(SphState& s) const;
   double limitStep(const SphState& s, const Rates& r, double maxSignal) const;
   void imageShift(std::uint32_t code, double d[3]) const;
@@ -161,16 +168,19 @@ private:
   SphState s_;
   SphParams par_;
   Neighbours nb_;
-  std::vector<std::uint32_t> flawStart_; // Grady–Kipp activation strains per particle (CSR, ascending)
+  std::vector<std::uint32_t>
+      flawStart_; // Grady–Kipp activation strains per particle (CSR, ascending)
   std::vector<double> flawEps_;
   std::vector<double> hCapFactor_; // per material: κ (α0/ρ0)^{1/3} × the growth cap (0: none)
   std::vector<double> rhoFloor_;   // per material: the density floor, kg/m³ (0: none)
-  double floorOf(const SphState& s, std::size_t i) const { return rhoFloor_[static_cast<std::size_t>(s.material[i])]; }
-  Rates k1_;                   // rates of the current state
-  SphState mid_;               // the predictor stage (members: reused, not reallocated, each step)
+  double floorOf(const SphState& s, std::size_t i) const {
+    return rhoFloor_[static_cast<std::size_t>(s.material[i])];
+  }
+  Rates k1_;     // rates of the current state
+  SphState mid_; // the predictor stage (members: reused, not reallocated, each step)
   Rates k2_;
   std::vector<double> pm_, cm_;
-  std::vector<double> p_, c_;  // pressure and sound speed of the current state
+  std::vector<double> p_, c_;           // pressure and sound speed of the current state
   mutable std::vector<double> nbMoved_; // neighboursValid's displacement bounds (reused)
   double time_ = 0.0, stableStep_ = 0.0;
   std::size_t steps_ = 0, builds_ = 0;

@@ -19,10 +19,12 @@ int main(int argc, char** argv) {
   c.muR = std::atof(argv[2]);
   c.muT = std::atof(argv[3]);
   const HeapTestResult h = runFixedBaseHeap(c, argc > 4 ? std::atof(argv[4]) : 12.0);
-  std::printf("{\"mu_s\": %g, \"mu_r\": %g, \"mu_t\": %g, \"particles_start\": %zu, \"particles_heap\": %zu, "
-              "\"time\": %.2f, \"flank_angle_deg\": %.1f, \"cone_angle_deg\": %.1f, \"height_m\": %.4f, "
-              "\"base_m\": %.3f}\n",
-              c.muS, c.muR, c.muT, h.particlesStart, h.particlesHeap, h.time, h.flankDegrees, h.coneDegrees,
-              h.height, h.base);
+  std::printf(
+      "{\"mu_s\": %g, \"mu_r\": %g, \"mu_t\": %g, \"particles_start\": %zu, \"particles_heap\": "
+      "%zu, "
+      "\"time\": %.2f, \"flank_angle_deg\": %.1f, \"cone_angle_deg\": %.1f, \"height_m\": %.4f, "
+      "\"base_m\": %.3f}\n",
+      c.muS, c.muR, c.muT, h.particlesStart, h.particlesHeap, h.time, h.flankDegrees, h.coneDegrees,
+      h.height, h.base);
   return 0;
 }

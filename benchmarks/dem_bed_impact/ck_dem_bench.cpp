@@ -58,9 +58,11 @@ int main(int argc, char** argv) {
     out.precision(17);
     out << box.side << " " << box.depth << "\n";
     for (std::size_t i = 0; i < bed.size(); ++i)
-      out << bed.position[3 * i] << " " << bed.position[3 * i + 1] << " " << bed.position[3 * i + 2] << "\n";
-    std::printf("{\"particles\": %zu, \"bulk_packing_fraction\": %.4f, \"side\": %.6f, \"depth\": %.6f}\n",
-                bed.size(), report.bulkPackingFraction, box.side, box.depth);
+      out << bed.position[3 * i] << " " << bed.position[3 * i + 1] << " " << bed.position[3 * i + 2]
+          << "\n";
+    std::printf(
+        "{\"particles\": %zu, \"bulk_packing_fraction\": %.4f, \"side\": %.6f, \"depth\": %.6f}\n",
+        bed.size(), report.bulkPackingFraction, box.side, box.depth);
     return 0;
   }
   if (mode != "run")
@@ -85,7 +87,8 @@ int main(int argc, char** argv) {
   c.boxSize = {box.side, box.side, box.depth};
   p.walls = containerWalls(c);
   p.gravity.vector = {0.0, 0.0, -kGravity};
-  const StiffnessProposal k = proposeStiffness(kRadius, kDensity, kSpeed, 0.01, kGravity, box.depth, 30.0);
+  const StiffnessProposal k =
+      proposeStiffness(kRadius, kDensity, kSpeed, 0.01, kGravity, box.depth, 30.0);
   p.contact.kN = k.kN;
   p.dt = k.dt;
   // The coefficients run.py gives the peers (EPS, MU_S, MU_R, MU_T, BETA there).
@@ -98,13 +101,15 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   for (long i = 0; i < steps; ++i)
     solver.step();
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double m = kDensity * 4.0 / 3.0 * M_PI * std::pow(kRadius, 3);
-  std::printf("{\"code\": \"CraterKit\", \"threads\": %d, \"particles\": %zu, \"steps\": %ld, "
-              "\"seconds\": %.4f, \"kn\": %.17g, \"dt\": %.17g, \"mass\": %.17g, \"radius\": %.17g, "
-              "\"impactor_radius\": %.17g, \"speed\": %.17g, \"side\": %.17g, \"depth\": %.17g, "
-              "\"builds\": %zu, \"contacts\": %zu}\n",
-              omp_get_max_threads(), s.size(), steps, seconds, k.kN, k.dt, m, kRadius, imp.radius, kSpeed,
-              box.side, box.depth, solver.neighbourBuilds(), solver.diagnostics().contacts);
+  std::printf(
+      "{\"code\": \"CraterKit\", \"threads\": %d, \"particles\": %zu, \"steps\": %ld, "
+      "\"seconds\": %.4f, \"kn\": %.17g, \"dt\": %.17g, \"mass\": %.17g, \"radius\": %.17g, "
+      "\"impactor_radius\": %.17g, \"speed\": %.17g, \"side\": %.17g, \"depth\": %.17g, "
+      "\"builds\": %zu, \"contacts\": %zu}\n",
+      omp_get_max_threads(), s.size(), steps, seconds, k.kN, k.dt, m, kRadius, imp.radius, kSpeed,
+      box.side, box.depth, solver.neighbourBuilds(), solver.diagnostics().contacts);
   return 0;
 }

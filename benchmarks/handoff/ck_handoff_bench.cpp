@@ -12,7 +12,8 @@
 using namespace craterkit;
 
 int main(int argc, char** argv) {
-  const double nSph = argc > 1 ? std::atof(argv[1]) : 1e6, nBed = argc > 2 ? std::atof(argv[2]) : nSph;
+  const double nSph = argc > 1 ? std::atof(argv[1]) : 1e6,
+               nBed = argc > 2 ? std::atof(argv[2]) : nSph;
   const double R = 1.0, volume = 2.0 / 3.0 * M_PI * R * R * R;
   const double dx = std::cbrt(volume / nSph);
   SphSnapshot s;
@@ -24,9 +25,11 @@ int main(int argc, char** argv) {
         const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
         if (r > R)
           continue;
-        const double uR = std::pow(0.25 / r, 3.0), cosT = -x[2] / r, sinT = std::sqrt(std::max(0.0, 1.0 - cosT * cosT));
+        const double uR = std::pow(0.25 / r, 3.0), cosT = -x[2] / r,
+                     sinT = std::sqrt(std::max(0.0, 1.0 - cosT * cosT));
         const double uT = uR * sinT / (1.0 + cosT), rho = std::hypot(x[0], x[1]);
-        const double eT[3] = {rho > 0 ? cosT * x[0] / rho : 0.0, rho > 0 ? cosT * x[1] / rho : 0.0, sinT};
+        const double eT[3] = {rho > 0 ? cosT * x[0] / rho : 0.0, rho > 0 ? cosT * x[1] / rho : 0.0,
+                              sinT};
         for (int a = 0; a < 3; ++a)
           s.v.push_back(uR * x[a] / r + uT * eT[a]);
         s.x.insert(s.x.end(), x, x + 3);
@@ -34,7 +37,8 @@ int main(int argc, char** argv) {
         s.h.push_back(2.5 * dx);
       }
   // Bed: simple cubic spheres (packing π/6) in a box 2.4 R wide and 1.2 R deep.
-  const double boxVolume = 2.4 * 2.4 * 1.2 * R * R * R, spacing = std::cbrt(boxVolume / nBed), rb = 0.5 * spacing;
+  const double boxVolume = 2.4 * 2.4 * 1.2 * R * R * R, spacing = std::cbrt(boxVolume / nBed),
+               rb = 0.5 * spacing;
   ParticleSet bed;
   const int m = static_cast<int>(1.2 * R / spacing);
   std::int64_t id = 0;
@@ -47,14 +51,17 @@ int main(int argc, char** argv) {
   TargetRegion region;
   region.shape = TargetRegion::Shape::Hemisphere;
   region.radius = R;
-  std::printf("hand-off: %zu SPH particles (dx %.4g m) onto %zu bed spheres, %d threads\n", s.size(), dx, bed.size(),
-              omp_get_max_threads());
+  std::printf("hand-off: %zu SPH particles (dx %.4g m) onto %zu bed spheres, %d threads\n",
+              s.size(), dx, bed.size(), omp_get_max_threads());
   const auto t0 = std::chrono::steady_clock::now();
   const HandoffResult r = handoff(s, bed, region, HandoffParams{});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("alpha radius %.4g m, %zu compact, %zu ejecta, %zu bed removed, %zu mapped, %zu triangles\n", r.alphaRadius,
-              r.compactCount, r.ejectaCount, r.bedRemoved, r.bedMapped, r.triangles.size() / 3);
-  std::printf("seconds: split %.2f, alpha shape %.2f, carve %.2f, map %.2f, ejecta %.2f, correct %.2f; total %.2f\n",
-              r.seconds.split, r.seconds.alphaShape, r.seconds.carve, r.seconds.map, r.seconds.ejecta, r.seconds.correct,
-              wall);
+  std::printf(
+      "alpha radius %.4g m, %zu compact, %zu ejecta, %zu bed removed, %zu mapped, %zu triangles\n",
+      r.alphaRadius, r.compactCount, r.ejectaCount, r.bedRemoved, r.bedMapped,
+      r.triangles.size() / 3);
+  std::printf("seconds: split %.2f, alpha shape %.2f, carve %.2f, map %.2f, ejecta %.2f, correct "
+              "%.2f; total %.2f\n",
+              r.seconds.split, r.seconds.alphaShape, r.seconds.carve, r.seconds.map,
+              r.seconds.ejecta, r.seconds.correct, wall);
 }

@@ -2,7 +2,8 @@
 //   ck_read_bench [PARTICLES] [DIR]
 // Writes a random set of PARTICLES (default 1e6) as a pkdgrav .ss file and as a LAMMPS dump
 // in DIR, then times (best of three, file in the page cache) `cat FILE > /dev/null` and
-// reading (a memory map, as the reader does) + parse for each. Prints MB/s and the ratio. See benchmarks/README.md.
+// reading (a memory map, as the reader does) + parse for each. Prints MB/s and the ratio. See
+// benchmarks/README.md.
 #include "common/Random.h"
 #include "io/ParticleFiles.h"
 
@@ -11,8 +12,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <string>
 
 using namespace craterkit;
@@ -23,12 +24,14 @@ double seconds(const std::function<void()>& f) {
   for (int k = 0; k < 3; ++k) {
     const auto t0 = std::chrono::steady_clock::now();
     f();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    best = std::min(best,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
   return best;
 }
 void save(const std::string& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(path, std::ios::binary)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 // The same columns as writeDump with LAMMPS's default `dump custom` format (%g: six
 // significant digits), which is what most users' dumps hold.
@@ -43,8 +46,8 @@ std::string writeDumpG(const ParticleFrame& f) {
     const double* v = &s.velocity[3 * i];
     const double* w = &s.angularVelocity[3 * i];
     const int len = std::snprintf(line, sizeof line, "%lld %d %g %g %g %g %g %g %g %g %g %g %g\n",
-                                  static_cast<long long>(s.id[i]), s.material[i] + 1, x[0], x[1], x[2], v[0], v[1], v[2],
-                                  w[0], w[1], w[2], s.radius[i], s.mass[i]);
+                                  static_cast<long long>(s.id[i]), s.material[i] + 1, x[0], x[1],
+                                  x[2], v[0], v[1], v[2], w[0], w[1], w[2], s.radius[i], s.mass[i]);
     out.append(line, static_cast<std::size_t>(len));
   }
   return out;
@@ -86,13 +89,15 @@ int main(int argc, char** argv) {
     }
     f.particles.mass.back() = rng.uniform(1000, 2000);
   }
-  const std::string ss = dir + "/bench.ss", dump = dir + "/bench.dump", dumpG = dir + "/bench-g.dump";
+  const std::string ss = dir + "/bench.ss", dump = dir + "/bench.dump",
+                    dumpG = dir + "/bench-g.dump";
   save(ss, writeSs(f, true));
   save(dump, writeDump(f));
   save(dumpG, writeDumpG(f));
-  std::printf("%zu particles\n%-7s %10s %12s %12s %8s %16s\n", n, "format", "MB", "cat MB/s", "parse MB/s", "ratio",
-              "from_chars MB/s");
-  for (const auto& [name, path] : {std::pair{"ss", ss}, std::pair{"dump", dump}, std::pair{"dump%g", dumpG}}) {
+  std::printf("%zu particles\n%-7s %10s %12s %12s %8s %16s\n", n, "format", "MB", "cat MB/s",
+              "parse MB/s", "ratio", "from_chars MB/s");
+  for (const auto& [name, path] :
+       {std::pair{"ss", ss}, std::pair{"dump", dump}, std::pair{"dump%g", dumpG}}) {
     const std::string p = path;
     const std::string cmd = "cat '" + p + "' > /dev/null";
     const double tc = seconds([&] {

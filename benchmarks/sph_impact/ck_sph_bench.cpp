@@ -16,8 +16,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <string>
 #include <omp.h>
+#include <string>
 
 using namespace craterkit;
 
@@ -49,23 +49,25 @@ int pysphImpact3d(int steps, double kappa, bool wendland) {
   SphState s;
   const double rest[3] = {0, 0, 0}, vs[3] = {3100.0, 0, 0};
   for (int i = 0; 0.0 + i * dx < 0.002 + dx - 1e-12; ++i)
-    for (int j = 0; -0.02 + j * dx < 0.02 + dx - 1e-12; ++j)
-      for (int k = 0; -0.02 + k * dx < 0.02 + dx - 1e-12; ++k) {
+    for (int j = 0; - 0.02 + j * dx < 0.02 + dx - 1e-12; ++j)
+      for (int k = 0; - 0.02 + k * dx < 0.02 + dx - 1e-12; ++k) {
         const double x[3] = {i * dx, -0.02 + j * dx, -0.02 + k * dx};
         s.add(x, rest, dx * dx * dx * 2785.0, 2785.0, 0.0, 0);
       }
   const std::size_t plate = s.size();
-  for (int i = 0; -r + i * dx < r + 1e-6; ++i)
-    for (int j = 0; -r + j * dx < r + 1e-6; ++j)
-      for (int k = 0; -r + k * dx < r + 1e-6; ++k) {
+  for (int i = 0; - r + i * dx < r + 1e-6; ++i)
+    for (int j = 0; - r + j * dx < r + 1e-6; ++j)
+      for (int k = 0; - r + k * dx < r + 1e-6; ++k) {
         const double x[3] = {-r + i * dx, -r + j * dx, -r + k * dx};
         if (x[0] * x[0] + x[1] * x[1] + x[2] * x[2] > r * r)
           continue;
         const double y[3] = {x[0] - (r + 2 * dx), x[1], x[2]};
         s.add(y, vs, dx * dx * dx * 7900.0, 7900.0, 0.0, 1);
       }
-  std::printf("PySPH impact3d problem: %zu plate + %zu projectile = %zu particles, %s kernel, reach %.2f dx, %d threads\n",
-              plate, s.size() - plate, s.size(), wendland ? "WendlandC2" : "CubicSpline", kappa, omp_get_max_threads());
+  std::printf("PySPH impact3d problem: %zu plate + %zu projectile = %zu particles, %s kernel, "
+              "reach %.2f dx, %d threads\n",
+              plate, s.size() - plate, s.size(), wendland ? "WendlandC2" : "CubicSpline", kappa,
+              omp_get_max_threads());
   const auto t0 = std::chrono::steady_clock::now();
   SphSolver solver(s, par);
   for (int i = 0; i < steps; ++i)
@@ -101,7 +103,8 @@ int main(int argc, char** argv) {
   SphImpactProblem prob = buildImpact(setup);
   if (const char* e = std::getenv("CK_SKIN"))
     prob.params.skin = std::atof(e);
-  if (const char* e = std::getenv("CK_LATE_STAGE")) { // "TIME SOUND_SPEED", as SPHImpact's LateStage*
+  if (const char* e =
+          std::getenv("CK_LATE_STAGE")) { // "TIME SOUND_SPEED", as SPHImpact's LateStage*
     prob.params.lateStageTime = std::atof(e);
     if (const char* c = std::strchr(e, ' '))
       prob.params.lateStageSoundSpeed = std::atof(c + 1);
@@ -109,8 +112,9 @@ int main(int argc, char** argv) {
 
   SphSolver solver(prob.state, prob.params);
   const std::size_t n = prob.state.size();
-  std::printf("SCI-like SPH: %zu particles (%zu impactor), dx = %.4g m, %d threads, to t = %.3g s\n", n,
-              prob.impactorParticles, prob.spacing, omp_get_max_threads(), end);
+  std::printf(
+      "SCI-like SPH: %zu particles (%zu impactor), dx = %.4g m, %d threads, to t = %.3g s\n", n,
+      prob.impactorParticles, prob.spacing, omp_get_max_threads(), end);
   double P0[3];
   solver.totalMomentum(P0);
   const double E0 = solver.totalEnergy();
@@ -123,12 +127,14 @@ int main(int argc, char** argv) {
       solver.totalMomentum(P);
       const SphState& s = solver.state();
       for (std::size_t i = 0; i < n; ++i) {
-        vmax = std::max(vmax, std::sqrt(s.v[3 * i] * s.v[3 * i] + s.v[3 * i + 1] * s.v[3 * i + 1] + s.v[3 * i + 2] * s.v[3 * i + 2]));
+        vmax = std::max(vmax, std::sqrt(s.v[3 * i] * s.v[3 * i] + s.v[3 * i + 1] * s.v[3 * i + 1] +
+                                        s.v[3 * i + 2] * s.v[3 * i + 2]));
         pmax = std::max(pmax, solver.pressure()[i]);
         if (s.material[i] == 1)
           amin = std::min(amin, s.alpha[i]);
       }
-      std::printf("t = %.3e s, %zu steps, dt %.2e, vmax %.0f m/s, pmax %.3g Pa, min distention %.3f, dP/P0 = %.1e, dE/E0 = %.2e\n",
+      std::printf("t = %.3e s, %zu steps, dt %.2e, vmax %.0f m/s, pmax %.3g Pa, min distention "
+                  "%.3f, dP/P0 = %.1e, dE/E0 = %.2e\n",
                   solver.time(), solver.steps(), solver.stableStep(), vmax, pmax, amin,
                   std::abs(P[2] - P0[2]) / std::abs(P0[2]), (solver.totalEnergy() - E0) / E0);
       std::fflush(stdout);
@@ -136,6 +142,7 @@ int main(int argc, char** argv) {
     }
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("%zu steps in %.2f s: %.3g particle-steps/s (%zu neighbour-list builds)\n", solver.steps(), wall,
-              static_cast<double>(n) * solver.steps() / wall, solver.neighbourBuilds());
+  std::printf("%zu steps in %.2f s: %.3g particle-steps/s (%zu neighbour-list builds)\n",
+              solver.steps(), wall, static_cast<double>(n) * solver.steps() / wall,
+              solver.neighbourBuilds());
 }

@@ -13,7 +13,8 @@
 using namespace craterkit;
 
 namespace {
-constexpr double kZ0 = 0.0, kRc = 2.0, kDepth = 0.6, kRimR = 2.5, kRimW = 0.5, kRimH = 0.3, kRp = 0.05;
+constexpr double kZ0 = 0.0, kRc = 2.0, kDepth = 0.6, kRimR = 2.5, kRimW = 0.5, kRimH = 0.3,
+                 kRp = 0.05;
 
 double surface(double r) {
   double z = kZ0 + kRimH * std::exp(-(r - kRimR) * (r - kRimR) / (kRimW * kRimW));
@@ -61,11 +62,13 @@ TEST(CraterProfile, RecoversTheDimensionsOfASyntheticCrater) {
     rad.push_back(kRp);
   }
   const CraterProfileResult b = craterProfile(x, rad, par);
-  std::printf("synthetic crater, %zu particles: diameter %.3f (true %.3f), rim diameter %.3f (%.3f), depth %.3f (%.3f), "
-              "rim height %.3f (%.3f), volume %.3f (%.3f) m3; with 200 ejecta: %.3f, %.3f, %.3f (%zu rejected)\n",
-              rad.size() - 200, a.all.diameter, t.diameter, a.all.rimDiameter, t.rimDiameter, a.all.depth, t.depth,
-              a.all.rimHeight, t.rimHeight, a.all.volume, t.volume, b.all.diameter, b.all.rimDiameter, b.all.depth,
-              b.rejectedAsEjecta);
+  std::printf("synthetic crater, %zu particles: diameter %.3f (true %.3f), rim diameter %.3f "
+              "(%.3f), depth %.3f (%.3f), "
+              "rim height %.3f (%.3f), volume %.3f (%.3f) m3; with 200 ejecta: %.3f, %.3f, %.3f "
+              "(%zu rejected)\n",
+              rad.size() - 200, a.all.diameter, t.diameter, a.all.rimDiameter, t.rimDiameter,
+              a.all.depth, t.depth, a.all.rimHeight, t.rimHeight, a.all.volume, t.volume,
+              b.all.diameter, b.all.rimDiameter, b.all.depth, b.rejectedAsEjecta);
   const double dp = 2.0 * kRp; // one particle diameter
   ASSERT_TRUE(a.all.found);
   EXPECT_NEAR(a.all.diameter, t.diameter, dp);
@@ -107,14 +110,17 @@ TEST(CraterProfile, FlatBedHasNoCraterAndBadInputIsNamed) {
 TEST(CraterProfile, RimIsTheCrestNextToTheCraterNotTheHighestGround) {
   std::vector<double> r, h, cone;
   for (double x = 0.005; x < 6.0; x += 0.01) {
-    double z = 0.1 * std::exp(-(x - 2.4) * (x - 2.4) / 0.04) + 0.5 * std::exp(-(x - 4.5) * (x - 4.5) / 0.09);
+    double z = 0.1 * std::exp(-(x - 2.4) * (x - 2.4) / 0.04) +
+               0.5 * std::exp(-(x - 4.5) * (x - 4.5) / 0.09);
     if (x < 2.0)
       z -= 0.6 * (1.0 - x * x / 4.0);
     r.push_back(x), h.push_back(z);
-    cone.push_back(x < 2.0 ? -0.577 * (2.0 - x) : 0.01 * std::sin(17.0 * x) + (x > 5.0 ? 0.3 : 0.0));
+    cone.push_back(x < 2.0 ? -0.577 * (2.0 - x)
+                           : 0.01 * std::sin(17.0 * x) + (x > 5.0 ? 0.3 : 0.0));
   }
   const CraterMeasures m = measureProfile(r, h, 0.0, 0.005);
-  std::printf("rim at diameter %.3f (crest at 4.8), height %.3f (0.1)\n", m.rimDiameter, m.rimHeight);
+  std::printf("rim at diameter %.3f (crest at 4.8), height %.3f (0.1)\n", m.rimDiameter,
+              m.rimHeight);
   ASSERT_TRUE(m.found);
   EXPECT_NEAR(m.rimDiameter, 4.8, 0.05);
   EXPECT_NEAR(m.rimHeight, 0.1, 0.005);

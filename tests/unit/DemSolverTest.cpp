@@ -1,9 +1,9 @@
 // SSDEM solver: analytic collisions, friction laws, conservation, neighbour oracle, restart.
+#include "dem/DemSolver.h"
 #include "bed/GranularBed.h"
 #include "common/Error.h"
 #include "common/Random.h"
 #include "dem/DemRun.h"
-#include "dem/DemSolver.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -263,8 +263,8 @@ TEST(DemConservation, IsolatedFrictionalClusterConservesMomenta) {
   for (std::size_t i = 0; i < st.size(); ++i) {
     const Eigen::Vector3d x(st.position[3 * i], st.position[3 * i + 1], st.position[3 * i + 2]);
     scaleP += st.mass[i] * velocityOf(solver, i).norm();
-    scaleL += st.mass[i] * x.norm() * velocityOf(solver, i).norm() +
-              0.4 * st.mass[i] * kR * kR * 5.0;
+    scaleL +=
+        st.mass[i] * x.norm() * velocityOf(solver, i).norm() + 0.4 * st.mass[i] * kR * kR * 5.0;
   }
   EXPECT_LT((b.momentum - a.momentum).norm(), 1e-12 * scaleP);
   EXPECT_LT((b.angularMomentum - a.angularMomentum).norm(), 1e-12 * scaleL);
@@ -352,8 +352,9 @@ TEST(DemRestart, ResumedRunIsBitIdentical) {
 TEST(DemRestart, EarlierRequestsNeverOverwriteALaterCheckpoint) {
   const ParticleSet s = jostledBlock(0.5, 7);
   const DemParams p = frictionalBox();
-  const std::string path =
-    (std::filesystem::temp_directory_path() / ("ck_demrun_" + std::to_string(::getpid()) + ".ckdem")).string();
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("ck_demrun_" + std::to_string(::getpid()) + ".ckdem"))
+                               .string();
   const auto stepInFile = [&] { return DemSolver::readCheckpoint(path).stepCount(); };
   DemSolver straight(s, p);
   std::vector<std::vector<double>> at(401);
@@ -371,7 +372,13 @@ TEST(DemRestart, EarlierRequestsNeverOverwriteALaterCheckpoint) {
   resumed.resumeFrom(path);
   EXPECT_NEAR(resumed.checkpointTime(), 333 * p.dt, 1e-12);
   double reported = 0.0;
-  resumed.advanceTo(120 * p.dt, [&](double f) { reported = std::max(reported, f); return true; }, path, 50);
+  resumed.advanceTo(
+      120 * p.dt,
+      [&](double f) {
+        reported = std::max(reported, f);
+        return true;
+      },
+      path, 50);
   EXPECT_EQ(resumed.solver().stepCount(), 120);
   EXPECT_EQ(resumed.solver().particles().position, at[120]);
   EXPECT_EQ(stepInFile(), 333) << "an earlier state overwrote the checkpoint";

@@ -84,12 +84,14 @@ TEST(Fragments, ContactsAndBondsMatchABruteForceOracle) {
     FragmentParams bonded;
     std::vector<std::vector<char>> adj(n, std::vector<char>(n, 0));
     for (int k = 0; k < 1200; ++k) {
-      const std::size_t a = static_cast<std::size_t>(rng.uniform() * n), b = static_cast<std::size_t>(rng.uniform() * n);
+      const std::size_t a = static_cast<std::size_t>(rng.uniform() * n),
+                        b = static_cast<std::size_t>(rng.uniform() * n);
       bonded.bonds.emplace_back(a, b);
       adj[a][b] = adj[b][a] = 1;
     }
     const FragmentResult rb = analyseFragments(x, r, m, v, bonded);
-    EXPECT_TRUE(samePartition(rb.fragmentId, oracle(n, [&](std::size_t a, std::size_t b) { return adj[a][b] != 0; })));
+    EXPECT_TRUE(samePartition(
+        rb.fragmentId, oracle(n, [&](std::size_t a, std::size_t b) { return adj[a][b] != 0; })));
   }
 }
 
@@ -97,9 +99,11 @@ TEST(Fragments, FragmentationAndCloudShapeOfHandBuiltClouds) {
   // Ten touching spheres in a row plus five isolated ones: six fragments of fifteen particles.
   std::vector<double> x, r, m, v;
   for (int i = 0; i < 10; ++i)
-    x.insert(x.end(), {0.2 * i, 0.0, 0.0}), r.push_back(0.1), m.push_back(1.0), v.insert(v.end(), {1.0, 0.0, 0.0});
+    x.insert(x.end(), {0.2 * i, 0.0, 0.0}), r.push_back(0.1), m.push_back(1.0),
+        v.insert(v.end(), {1.0, 0.0, 0.0});
   for (int i = 0; i < 5; ++i)
-    x.insert(x.end(), {10.0 + 5.0 * i, 3.0, 0.0}), r.push_back(0.1), m.push_back(1.0), v.insert(v.end(), {2.0 + i, 0.0, 0.0});
+    x.insert(x.end(), {10.0 + 5.0 * i, 3.0, 0.0}), r.push_back(0.1), m.push_back(1.0),
+        v.insert(v.end(), {2.0 + i, 0.0, 0.0});
   FragmentParams par;
   FragmentResult res = analyseFragments(x, r, m, v, par);
   EXPECT_EQ(res.fragments.size(), 6u);
@@ -113,9 +117,11 @@ TEST(Fragments, FragmentationAndCloudShapeOfHandBuiltClouds) {
   Random rng(5);
   x.clear(), r.clear(), m.clear(), v.clear();
   auto add = [&](double px, double py, double pz, double vx) {
-    x.insert(x.end(), {px, py, pz}), r.push_back(0.01), m.push_back(1.0), v.insert(v.end(), {vx, 0.0, 0.0});
+    x.insert(x.end(), {px, py, pz}), r.push_back(0.01), m.push_back(1.0),
+        v.insert(v.end(), {vx, 0.0, 0.0});
   };
-  add(1.0, 0.0, 0.0, 0.0), add(7.0, 0.0, 0.0, 5.0), add(4.0, 1.0, 0.0, 2.0), add(4.0, 0.0, -1.0, 2.0);
+  add(1.0, 0.0, 0.0, 0.0), add(7.0, 0.0, 0.0, 5.0), add(4.0, 1.0, 0.0, 2.0),
+      add(4.0, 0.0, -1.0, 2.0);
   while (r.size() < 2000) {
     const double u = rng.uniform(-1, 1), w = rng.uniform(-1, 1), s = rng.uniform(-1, 1);
     if (u * u + w * w + s * s <= 1.0)
@@ -147,13 +153,16 @@ TEST(Fragments, EjectaAnglesFollowTheZModel) {
     Random rng(3);
     for (int k = 0; k < 500; ++k) {
       const double R = rng.uniform(0.5, 2.0), phi = rng.uniform(0.0, 2.0 * M_PI);
-      const double uR = 0.1 / (R * R * R), uT = uR * (Z - 2.0); // at θ = 90°: e_R horizontal, e_θ up
+      const double uR = 0.1 / (R * R * R),
+                   uT = uR * (Z - 2.0); // at θ = 90°: e_R horizontal, e_θ up
       x.insert(x.end(), {R * std::cos(phi), R * std::sin(phi), 0.02});
       v.insert(v.end(), {uR * std::cos(phi), uR * std::sin(phi), uT});
       r.push_back(0.01), m.push_back(rng.uniform(0.5, 2.0));
     }
-    x.insert(x.end(), {1.0, 0.0, -0.5}), v.insert(v.end(), {0.0, 0.0, 1.0}), r.push_back(0.01), m.push_back(100.0);
-    x.insert(x.end(), {1.0, 0.0, 0.5}), v.insert(v.end(), {1.0, 0.0, -1.0}), r.push_back(0.01), m.push_back(100.0);
+    x.insert(x.end(), {1.0, 0.0, -0.5}), v.insert(v.end(), {0.0, 0.0, 1.0}), r.push_back(0.01),
+        m.push_back(100.0);
+    x.insert(x.end(), {1.0, 0.0, 0.5}), v.insert(v.end(), {1.0, 0.0, -1.0}), r.push_back(0.01),
+        m.push_back(100.0);
     const double axis[2] = {0.0, 0.0};
     const EjectaStatistics e = ejectaStatistics(x, r, m, v, 0.0, axis);
     EXPECT_EQ(e.count, 500u);

@@ -51,14 +51,15 @@ double bruteForceWorstOverlap(const ParticleSet& s) {
 void expectInsideContainer(const ParticleSet& s, const Container& c) {
   for (std::size_t i = 0; i < s.size(); ++i)
     ASSERT_TRUE(c.inside(&s.position[3 * i], s.radius[i] * (1 - 1e-9)))
-        << "particle " << i << " at (" << s.position[3 * i] << ", " << s.position[3 * i + 1]
-        << ", " << s.position[3 * i + 2] << ") r = " << s.radius[i];
+        << "particle " << i << " at (" << s.position[3 * i] << ", " << s.position[3 * i + 1] << ", "
+        << s.position[3 * i + 2] << ") r = " << s.radius[i];
 }
 
 } // namespace
 
 TEST(GranularBed, RandomBedsHaveNoOverlapsBruteForce) {
-  for (auto p : {smallBowl(GranularBedParams::Packing::RCP), smallBox(GranularBedParams::Packing::RCP)}) {
+  for (auto p :
+       {smallBowl(GranularBedParams::Packing::RCP), smallBox(GranularBedParams::Packing::RCP)}) {
     p.sizes.type = SizeDistribution::Type::Uniform;
     p.sizes.minRadius = 0.3;
     p.sizes.maxRadius = 0.6;
@@ -70,7 +71,8 @@ TEST(GranularBed, RandomBedsHaveNoOverlapsBruteForce) {
 }
 
 TEST(GranularBed, HcpBedsHaveNoOverlapsAndTouchNeighbours) {
-  for (auto p : {smallBowl(GranularBedParams::Packing::HCP), smallBox(GranularBedParams::Packing::HCP)}) {
+  for (auto p :
+       {smallBowl(GranularBedParams::Packing::HCP), smallBox(GranularBedParams::Packing::HCP)}) {
     const ParticleSet bed = generateGranularBed(p);
     ASSERT_GT(bed.size(), 50u);
     // Lattice neighbours touch: the worst "overlap" is zero to round-off, never positive.
@@ -155,7 +157,8 @@ TEST(GranularBed, RandomBulkPackingIsLooseButAboveHalf) {
 TEST(GranularBed, SettledRandomBedIsDenseWithoutOverlaps) {
   // Monodisperse RCP settled under gravity with the DEM: bulk 0.58-0.64, no overlaps,
   // inside the container, top layer reaching the surface.
-  for (auto p : {smallBowl(GranularBedParams::Packing::RCP), smallBox(GranularBedParams::Packing::RCP)}) {
+  for (auto p :
+       {smallBowl(GranularBedParams::Packing::RCP), smallBox(GranularBedParams::Packing::RCP)}) {
     p.settle = true;
     GranularBedReport report;
     const ParticleSet bed = generateGranularBed(p, &report);
@@ -202,11 +205,12 @@ TEST(GranularBed, SizeDistributionMatchesItsParameters) {
       hi = std::max(hi, r);
     }
     const double sd = std::sqrt(p.sizes.moment(2) - std::pow(p.sizes.moment(1), 2));
-    EXPECT_NEAR(mean, p.sizes.moment(1), 4.0 * sd / std::sqrt(n)) << SizeDistribution::typeName(type);
+    EXPECT_NEAR(mean, p.sizes.moment(1), 4.0 * sd / std::sqrt(n))
+        << SizeDistribution::typeName(type);
     EXPECT_NEAR(mean2, p.sizes.moment(2), 0.03 * p.sizes.moment(2));
     EXPECT_GE(lo, 0.2);
     EXPECT_LE(hi, 0.5);
-    EXPECT_LT(lo, 0.2 + 0.02);             // the extremes are reached
+    EXPECT_LT(lo, 0.2 + 0.02); // the extremes are reached
     EXPECT_GT(hi, type == SizeDistribution::Type::Uniform ? 0.48 : 0.45);
   }
 }
@@ -227,7 +231,8 @@ TEST(GranularBed, PowerLawCumulativeSlope) {
     above2 += r > 0.4;
   }
   auto tail = [&](double r) {
-    return (std::pow(r, -2.5) - std::pow(10.0, -2.5)) / (std::pow(0.1, -2.5) - std::pow(10.0, -2.5));
+    return (std::pow(r, -2.5) - std::pow(10.0, -2.5)) /
+           (std::pow(0.1, -2.5) - std::pow(10.0, -2.5));
   };
   EXPECT_NEAR(above1 / double(n), tail(0.2), 4 * std::sqrt(tail(0.2) / n));
   EXPECT_NEAR(above2 / double(n), tail(0.4), 4 * std::sqrt(tail(0.4) / n));
@@ -346,26 +351,28 @@ TEST(Container, ProjectionIsNearestFeasiblePoint) {
   // Compare the bowl projection with a brute-force search over feasible points, for a
   // surface below the rim and one above it (the wall continues as a cylinder).
   for (double surface : {-0.5, 1.0}) {
-  Container c;
-  c.type = Container::Type::Bowl;
-  c.bowlRadius = 3.0;
-  c.surfaceHeight = surface;
-  const double r = 0.4;
-  Random rng(3);
-  for (int trial = 0; trial < 300; ++trial) {
-    double x[3] = {rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-4, 2)};
-    double p[3] = {x[0], x[1], x[2]};
-    c.project(p, r);
-    ASSERT_TRUE(c.inside(p, r * (1 - 1e-12)));
-    const double dp = std::sqrt(std::pow(p[0] - x[0], 2) + std::pow(p[1] - x[1], 2) + std::pow(p[2] - x[2], 2));
-    for (int s = 0; s < 3000; ++s) {
-      double y[3] = {rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-3, 1)};
-      if (!c.inside(y, r))
-        continue;
-      const double dy = std::sqrt(std::pow(y[0] - x[0], 2) + std::pow(y[1] - x[1], 2) + std::pow(y[2] - x[2], 2));
-      ASSERT_GE(dy, dp - 1e-9) << "surface " << surface;
+    Container c;
+    c.type = Container::Type::Bowl;
+    c.bowlRadius = 3.0;
+    c.surfaceHeight = surface;
+    const double r = 0.4;
+    Random rng(3);
+    for (int trial = 0; trial < 300; ++trial) {
+      double x[3] = {rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-4, 2)};
+      double p[3] = {x[0], x[1], x[2]};
+      c.project(p, r);
+      ASSERT_TRUE(c.inside(p, r * (1 - 1e-12)));
+      const double dp =
+          std::sqrt(std::pow(p[0] - x[0], 2) + std::pow(p[1] - x[1], 2) + std::pow(p[2] - x[2], 2));
+      for (int s = 0; s < 3000; ++s) {
+        double y[3] = {rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-3, 1)};
+        if (!c.inside(y, r))
+          continue;
+        const double dy = std::sqrt(std::pow(y[0] - x[0], 2) + std::pow(y[1] - x[1], 2) +
+                                    std::pow(y[2] - x[2], 2));
+        ASSERT_GE(dy, dp - 1e-9) << "surface " << surface;
+      }
     }
-  }
   }
 }
 
@@ -383,7 +390,8 @@ TEST(Container, FillVolumeMatchesMonteCarlo) {
     const int n = 400000;
     int in = 0;
     for (int i = 0; i < n; ++i) {
-      double x[3] = {rng.uniform(lo[0], hi[0]), rng.uniform(lo[1], hi[1]), rng.uniform(lo[2], hi[2])};
+      double x[3] = {rng.uniform(lo[0], hi[0]), rng.uniform(lo[1], hi[1]),
+                     rng.uniform(lo[2], hi[2])};
       in += c.inside(x, 0.0);
     }
     const double box = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);

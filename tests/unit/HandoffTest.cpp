@@ -1,8 +1,8 @@
 // The SPH → DEM hand-off on synthetic SPH fields with known answers: conservation of
 // momentum and angular momentum, fidelity of the mapped velocity field, carving of a known
 // cavity, ejecta, and named errors.
-#include "common/Error.h"
 #include "handoff/Handoff.h"
+#include "common/Error.h"
 
 #include <gtest/gtest.h>
 
@@ -17,9 +17,9 @@ namespace {
 
 using Field = std::function<void(const double* x, double* v)>;
 
-constexpr double kR = 1.0;          // SPH target: hemisphere of radius 1 m, surface z = 0
-constexpr double kDx = 1.0 / 30.0;  // SPH lattice spacing
-constexpr double kRho = 1190.0;     // bulk density of the target and the bed
+constexpr double kR = 1.0;         // SPH target: hemisphere of radius 1 m, surface z = 0
+constexpr double kDx = 1.0 / 30.0; // SPH lattice spacing
+constexpr double kRho = 1190.0;    // bulk density of the target and the bed
 
 // SPH particles on a cubic lattice filling the hemisphere, minus an optional cavity (a
 // hemisphere of radius `cavity` at the origin), moving with `field`.
@@ -67,7 +67,9 @@ TargetRegion hemisphere() {
 }
 
 double relErr(const std::array<double, 3>& a, const std::array<double, 3>& b, double scale) {
-  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])) / scale;
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                   (a[2] - b[2]) * (a[2] - b[2])) /
+         scale;
 }
 
 struct Check {
@@ -83,7 +85,8 @@ Check run(const SphSnapshot& sph, const Field& field, const HandoffParams& param
   HandoffTotals dem = totalsOf(r.particles);
   std::array<double, 3> P{}, L{};
   for (int a = 0; a < 3; ++a)
-    P[a] = r.sphCompact.momentum[a] + r.sphEjecta.momentum[a], L[a] = r.sphCompact.angularMomentum[a] + r.sphEjecta.angularMomentum[a];
+    P[a] = r.sphCompact.momentum[a] + r.sphEjecta.momentum[a],
+    L[a] = r.sphCompact.angularMomentum[a] + r.sphEjecta.angularMomentum[a];
   double pScale = 0.0, mTot = 0.0;
   for (std::size_t i = 0; i < sph.size(); ++i) {
     const double* v = &sph.v[3 * i];
@@ -142,8 +145,8 @@ TEST(Handoff, UniformTranslationConservesMomentumAndMass) {
   const double ratio = c.result.demMapped.mass / c.result.sphCompact.mass;
   std::printf("translation: %zu SPH, %zu bed mapped, %zu removed; |dP| %.1e, |dL| %.1e (relative); "
               "DEM/SPH mass %.3f; alpha %.4f m; rms error %.1e of rms speed\n",
-              sph.size(), c.result.bedMapped, c.result.bedRemoved, c.pErr, c.lErr, ratio, c.result.alphaRadius,
-              c.rmsError / c.rmsSpeed);
+              sph.size(), c.result.bedMapped, c.result.bedRemoved, c.pErr, c.lErr, ratio,
+              c.result.alphaRadius, c.rmsError / c.rmsSpeed);
   EXPECT_EQ(c.result.ejectaCount, 0u);
   EXPECT_LT(c.pErr, 1e-10);
   EXPECT_LT(c.lErr, 1e-10);
@@ -165,11 +168,12 @@ TEST(Handoff, UniformTranslationConservesMomentumAndMass) {
 TEST(Handoff, RigidRotationIsMappedFaithfullyAndConserved) {
   const Field f = [](const double* x, double* v) {
     const double w[3] = {0.1, -0.2, 0.5}; // rad/s: at most 0.55 m/s inside the unit hemisphere
-    v[0] = w[1] * x[2] - w[2] * x[1], v[1] = w[2] * x[0] - w[0] * x[2], v[2] = w[0] * x[1] - w[1] * x[0];
+    v[0] = w[1] * x[2] - w[2] * x[1], v[1] = w[2] * x[0] - w[0] * x[2],
+    v[2] = w[0] * x[1] - w[1] * x[0];
   };
   const Check c = run(lattice(f), f);
-  std::printf("rotation: |dP| %.1e, |dL| %.1e, rms error %.2e of rms speed %.3f m/s\n", c.pErr, c.lErr,
-              c.rmsError / c.rmsSpeed, c.rmsSpeed);
+  std::printf("rotation: |dP| %.1e, |dL| %.1e, rms error %.2e of rms speed %.3f m/s\n", c.pErr,
+              c.lErr, c.rmsError / c.rmsSpeed, c.rmsSpeed);
   EXPECT_LT(c.pErr, 1e-10);
   EXPECT_LT(c.lErr, 1e-10);
   EXPECT_LT(c.rmsError, 0.05 * c.rmsSpeed);
@@ -178,7 +182,8 @@ TEST(Handoff, RigidRotationIsMappedFaithfullyAndConserved) {
   double wz = 0.0;
   std::size_t n = 0;
   for (std::size_t i = 0; i < r.particles.size(); ++i)
-    if (r.origin[i] == 0 && hemisphere().contains(&r.particles.position[3 * i]) && r.particles.position[3 * i + 2] < -0.2)
+    if (r.origin[i] == 0 && hemisphere().contains(&r.particles.position[3 * i]) &&
+        r.particles.position[3 * i + 2] < -0.2)
       wz += r.particles.angularVelocity[3 * i + 2], ++n;
   EXPECT_NEAR(wz / n, 0.5, 0.01);
 }
@@ -216,9 +221,11 @@ TEST(Handoff, ZModelFlowAndItsEjecta) {
       worst = std::max(worst, overlap / r.particles.radius[i]);
     }
   }
-  std::printf("Z-model: %zu ejecta (%.3f kg) of %zu SPH; |dP| %.1e, |dL| %.1e; rms error %.2e of rms speed; "
+  std::printf("Z-model: %zu ejecta (%.3f kg) of %zu SPH; |dP| %.1e, |dL| %.1e; rms error %.2e of "
+              "rms speed; "
               "worst ejecta overlap %.2e radii; %zu warnings\n",
-              ejecta, ejectaMass, sph.size(), c.pErr, c.lErr, c.rmsError / c.rmsSpeed, worst, r.warnings.size());
+              ejecta, ejectaMass, sph.size(), c.pErr, c.lErr, c.rmsError / c.rmsSpeed, worst,
+              r.warnings.size());
   EXPECT_GT(fast, 10u);
   EXPECT_EQ(ejecta, fast);
   EXPECT_NEAR(ejectaMass, fastMass, 1e-12 * fastMass);
@@ -251,7 +258,8 @@ TEST(Handoff, CarvesAHemisphericalCavity) {
     if (d > cavity + tol && d < kR - tol && !kept[i])
       ++wrongRemoved;
   }
-  std::printf("cavity: %zu removed; %zu kept inside the cavity, %zu removed outside it\n", removed, wrongKept, wrongRemoved);
+  std::printf("cavity: %zu removed; %zu kept inside the cavity, %zu removed outside it\n", removed,
+              wrongKept, wrongRemoved);
   EXPECT_EQ(wrongKept, 0u);
   EXPECT_EQ(wrongRemoved, 0u);
   EXPECT_GT(removed, 1000u);
@@ -294,8 +302,9 @@ TEST(Handoff, GroupedEjectaKeepMassMomentumAndAngularMomentum) {
     n1 += o == 1;
   for (int o : c.result.origin)
     n2 += o == 1;
-  std::printf("grouped ejecta: %zu particles instead of %zu; mass %.6f vs %.6f kg; |dP| %.1e, |dL| %.1e\n", n2, n1,
-              c.result.demEjecta.mass, c.result.sphEjecta.mass, c.pErr, c.lErr);
+  std::printf(
+      "grouped ejecta: %zu particles instead of %zu; mass %.6f vs %.6f kg; |dP| %.1e, |dL| %.1e\n",
+      n2, n1, c.result.demEjecta.mass, c.result.sphEjecta.mass, c.pErr, c.lErr);
   EXPECT_LT(n2, n1);
   EXPECT_NEAR(c.result.demEjecta.mass, c.result.sphEjecta.mass, 1e-12 * c.result.sphEjecta.mass);
   EXPECT_LT(c.pErr, 1e-10);
@@ -310,11 +319,13 @@ TEST(Handoff, GroupedEjectaKeepMassMomentumAndAngularMomentum) {
 // neighbour within two cube edges that stays within two bed grains, so every grain but one
 // weighs between half a bed grain and two: the exception is a particle alone 0.4 m above the
 // rings, which becomes no grain (its totals reported as dropped), or, with
-// dropLoneLightPieces off, stays as light as it is. Mass, momentum and angular momentum (spin included)
-// are those of the SPH curtain (with the dropped piece's), every way, and the kinetic energy within 5 %.
+// dropLoneLightPieces off, stays as light as it is. Mass, momentum and angular momentum (spin
+// included) are those of the SPH curtain (with the dropped piece's), every way, and the kinetic
+// energy within 5 %.
 TEST(Handoff, GroupedSparseCurtainBecomesGrainsOfAtLeastHalfTheBedsMass) {
   SphSnapshot sph = lattice([](const double*, double* v) { v[0] = v[1] = v[2] = 0.0; });
-  const double grain = kRho / (M_PI / 6.0) * 4.0 / 3.0 * M_PI * 0.025 * 0.025 * 0.025; // bed() grains
+  const double grain =
+      kRho / (M_PI / 6.0) * 4.0 / 3.0 * M_PI * 0.025 * 0.025 * 0.025; // bed() grains
   auto add = [&](const double x[3], const double v[3]) {
     sph.x.insert(sph.x.end(), x, x + 3);
     sph.v.insert(sph.v.end(), v, v + 3);
@@ -324,7 +335,8 @@ TEST(Handoff, GroupedSparseCurtainBecomesGrainsOfAtLeastHalfTheBedsMass) {
   for (int k = 0; k < 400; ++k) {
     const double phi = 2.0 * M_PI * (k % 100) / 100.0, lift = 0.2 + 0.2 * (k / 100) / 3.0;
     const double c = std::cos(phi), s = std::sin(phi);
-    const double x[3] = {0.5 * c, 0.5 * s, lift}, v[3] = {0.3 * c - 0.1 * s, 0.3 * s + 0.1 * c, 0.2 + 0.1 * (k % 7)};
+    const double x[3] = {0.5 * c, 0.5 * s, lift},
+                 v[3] = {0.3 * c - 0.1 * s, 0.3 * s + 0.1 * c, 0.2 + 0.1 * (k % 7)};
     add(x, v);
   }
   const double alone[3] = {0.5, 0.0, 0.8}, up[3] = {0.0, 0.1, 0.3};
@@ -334,7 +346,8 @@ TEST(Handoff, GroupedSparseCurtainBecomesGrainsOfAtLeastHalfTheBedsMass) {
     for (int a = 0; a < 3; ++a)
       curtainEnergy += 0.5 * sph.mass[i] * sph.v[3 * i + a] * sph.v[3 * i + a];
   const double aloneEnergy = 0.5 * 0.3 * grain * (up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
-  for (const auto& [reach, dropLone] : {std::pair{0.0, true}, std::pair{2.0, false}, std::pair{2.0, true}}) {
+  for (const auto& [reach, dropLone] :
+       {std::pair{0.0, true}, std::pair{2.0, false}, std::pair{2.0, true}}) {
     HandoffParams params;
     params.groupEjecta = params.dropEjecta = true;
     params.groupReach = reach;
@@ -353,12 +366,17 @@ TEST(Handoff, GroupedSparseCurtainBecomesGrainsOfAtLeastHalfTheBedsMass) {
         mmax = std::max(mmax, m);
         for (int a = 0; a < 3; ++a) {
           ke += 0.5 * m * r.particles.velocity[3 * i + a] * r.particles.velocity[3 * i + a];
-          spin += 0.5 * 0.4 * m * rad * rad * r.particles.angularVelocity[3 * i + a] * r.particles.angularVelocity[3 * i + a];
+          spin += 0.5 * 0.4 * m * rad * rad * r.particles.angularVelocity[3 * i + a] *
+                  r.particles.angularVelocity[3 * i + a];
         }
       }
-    std::printf("reach %.0f cube edges, lone light pieces %s: %zu curtain grains, %zu lighter than half a bed grain, smallest radius "
-                "%.4f m (bed 0.025 m), heaviest %.2f bed grains; kinetic energy %.4f J + spin %.4f J (SPH curtain "
-                "%.4f J)\n", reach, dropLone ? "dropped" : "kept", grains, light, rmin, mmax / grain, ke, spin, curtainEnergy);
+    std::printf("reach %.0f cube edges, lone light pieces %s: %zu curtain grains, %zu lighter than "
+                "half a bed grain, smallest radius "
+                "%.4f m (bed 0.025 m), heaviest %.2f bed grains; kinetic energy %.4f J + spin %.4f "
+                "J (SPH curtain "
+                "%.4f J)\n",
+                reach, dropLone ? "dropped" : "kept", grains, light, rmin, mmax / grain, ke, spin,
+                curtainEnergy);
     // Merging is inelastic, but the pieces' motion about their common centre becomes spin,
     // which can hold more energy than the merge took from their translation (+2.6 % here, where
     // neighbours' vertical speeds differ by up to 0.6 m/s).
@@ -374,10 +392,12 @@ TEST(Handoff, GroupedSparseCurtainBecomesGrainsOfAtLeastHalfTheBedsMass) {
     // What the grains carry and what the dropped lone piece carried add up to the curtain.
     const double scale = r.sphCurtain.mass * 0.5;
     EXPECT_NEAR(r.sphLoneDropped.mass, dropped ? 0.3 * grain : 0.0, 1e-12 * r.sphCurtain.mass);
-    EXPECT_NEAR(r.demEjecta.mass + r.sphLoneDropped.mass, r.sphCurtain.mass, 1e-12 * r.sphCurtain.mass);
+    EXPECT_NEAR(r.demEjecta.mass + r.sphLoneDropped.mass, r.sphCurtain.mass,
+                1e-12 * r.sphCurtain.mass);
     for (int a = 0; a < 3; ++a) {
       EXPECT_NEAR(r.sphLoneDropped.momentum[a], dropped ? 0.3 * grain * up[a] : 0.0, 1e-12 * scale);
-      EXPECT_NEAR(r.demEjecta.momentum[a] + r.sphLoneDropped.momentum[a], r.sphCurtain.momentum[a], 1e-10 * scale);
+      EXPECT_NEAR(r.demEjecta.momentum[a] + r.sphLoneDropped.momentum[a], r.sphCurtain.momentum[a],
+                  1e-10 * scale);
       EXPECT_NEAR(r.demEjecta.angularMomentum[a] + r.sphLoneDropped.angularMomentum[a],
                   r.sphCurtain.angularMomentum[a], 1e-10 * scale);
     }
@@ -412,11 +432,14 @@ TEST(Handoff, CurtainAboveTheSurfaceBecomesParticles) {
     EXPECT_EQ(inserted, 400u) << (drop ? "dropped" : "kept");
     const double scale = r.sphCompact.mass * 0.5;
     for (int a = 0; a < 3; ++a) {
-      EXPECT_NEAR(r.demMapped.momentum[a] + r.sphCurtain.momentum[a], r.sphCompact.momentum[a], 1e-10 * scale);
-      EXPECT_NEAR(r.demEjecta.momentum[a], r.sphCurtain.momentum[a], 1e-10 * scale); // no fast ejecta here
+      EXPECT_NEAR(r.demMapped.momentum[a] + r.sphCurtain.momentum[a], r.sphCompact.momentum[a],
+                  1e-10 * scale);
+      EXPECT_NEAR(r.demEjecta.momentum[a], r.sphCurtain.momentum[a],
+                  1e-10 * scale); // no fast ejecta here
     }
     EXPECT_NEAR(r.sphCurtain.momentum[2], 400 * kRho * kDx * kDx * kDx * 0.5, 1e-12 * scale);
-    EXPECT_NEAR(r.demMapped.momentum[2], n0 * kRho * kDx * kDx * kDx * -0.2, 1e-10 * scale); // the hemisphere's own
+    EXPECT_NEAR(r.demMapped.momentum[2], n0 * kRho * kDx * kDx * kDx * -0.2,
+                1e-10 * scale); // the hemisphere's own
   }
   HandoffParams off;
   off.curtainAsParticles = false;
@@ -466,9 +489,10 @@ TEST(Handoff, BallisticMaterialLandingOutsideTheContainerEscapes) {
   EXPECT_NEAR(r.sphEscaped.momentum[2], expectOut * m * vz, 1e-12 * r.sphCompact.mass);
   const double scale = r.sphCompact.mass * 2.0;
   for (int a = 0; a < 3; ++a) {
-    EXPECT_NEAR(r.demMapped.momentum[a] + r.demEjecta.momentum[a] + r.sphEscaped.momentum[a], r.sphCompact.momentum[a],
+    EXPECT_NEAR(r.demMapped.momentum[a] + r.demEjecta.momentum[a] + r.sphEscaped.momentum[a],
+                r.sphCompact.momentum[a], 1e-10 * scale);
+    EXPECT_NEAR(r.demEjecta.momentum[a] + r.sphEscaped.momentum[a], r.sphCurtain.momentum[a],
                 1e-10 * scale);
-    EXPECT_NEAR(r.demEjecta.momentum[a] + r.sphEscaped.momentum[a], r.sphCurtain.momentum[a], 1e-10 * scale);
   }
   // Without gravity nothing moving up comes down: the whole curtain escapes.
   params.gravity = 0.0;
@@ -504,7 +528,8 @@ TEST(Handoff, MappedVelocitiesStayWithinTheirNeighboursRange) {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     bool any = false;
     for (std::size_t k = 0; k < sph.size(); ++k) {
-      const double dx = sph.x[3 * k] - x[0], dy = sph.x[3 * k + 1] - x[1], dz = sph.x[3 * k + 2] - x[2];
+      const double dx = sph.x[3 * k] - x[0], dy = sph.x[3 * k + 1] - x[1],
+                   dz = sph.x[3 * k + 2] - x[2];
       if (dx * dx + dy * dy + dz * dz >= support * support)
         continue;
       any = true;
@@ -519,7 +544,9 @@ TEST(Handoff, MappedVelocitiesStayWithinTheirNeighboursRange) {
       worst = std::max(worst, std::max(v - hi[a], lo[a] - v));
     }
   }
-  std::printf("rough field: %zu grains checked, largest excess over their neighbours' range %.3g m/s\n", checked, worst);
+  std::printf(
+      "rough field: %zu grains checked, largest excess over their neighbours' range %.3g m/s\n",
+      checked, worst);
   EXPECT_GT(checked, 5000u);
   EXPECT_LT(worst, 0.02); // the momentum correction's rotation, not a fit
 }

@@ -23,7 +23,8 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Random non-overlapping disks of radius r in a box (random sequential addition, brute force).
-HardDisks randomGas(std::size_t n, double r, double w, double h, std::uint64_t seed, bool zeroMomentum) {
+HardDisks randomGas(std::size_t n, double r, double w, double h, std::uint64_t seed,
+                    bool zeroMomentum) {
   Random rng(seed);
   HardDisks d;
   while (d.size() < n) {
@@ -37,7 +38,8 @@ HardDisks randomGas(std::size_t n, double r, double w, double h, std::uint64_t s
     if (!ok)
       continue;
     const double a = 2.0 * kPi * rng.uniform(), s = rng.uniform(0.5, 1.5);
-    d.add(x, y, s * std::cos(a), s * std::sin(a), r, 1.0 + rng.uniform(), 0, static_cast<std::int64_t>(d.size()));
+    d.add(x, y, s * std::cos(a), s * std::sin(a), r, 1.0 + rng.uniform(), 0,
+          static_cast<std::int64_t>(d.size()));
   }
   if (zeroMomentum) {
     double px = 0, py = 0, m = 0;
@@ -61,7 +63,8 @@ struct BruteForce {
   double t = 0.0;
 
   double pairTime(std::size_t i, std::size_t j) const {
-    const double rx = d.x[j] - d.x[i], ry = d.y[j] - d.y[i], ux = d.vx[j] - d.vx[i], uy = d.vy[j] - d.vy[i];
+    const double rx = d.x[j] - d.x[i], ry = d.y[j] - d.y[i], ux = d.vx[j] - d.vx[i],
+                 uy = d.vy[j] - d.vy[i];
     const double s = d.radius[i] + d.radius[j];
     const double c = rx * rx + ry * ry - s * s, b = rx * ux + ry * uy, a = ux * ux + uy * uy;
     if (b >= 0.0)
@@ -113,7 +116,8 @@ struct BruteForce {
       for (std::size_t j = i + 1; j < n; ++j) {
         const double tp = pairTime(i, j);
         if (tp < best)
-          best = tp, e = EventRecord{0.0, EventType::Pair, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)};
+          best = tp, e = EventRecord{0.0, EventType::Pair, static_cast<std::uint32_t>(i),
+                                     static_cast<std::uint32_t>(j)};
       }
     }
     e.time = t + best;
@@ -187,8 +191,8 @@ TEST(HardDiskSystem, ElasticRunConservesEnergyAndMomentumOverAMillionEvents) {
   for (int a = 0; a < side; ++a)
     for (int b = 0; b < side; ++b) {
       const double ang = 2.0 * kPi * rng.uniform();
-      d.add((a + 0.5) / side, (b + 0.5) / side, std::cos(ang), std::sin(ang), r, 1.0 + rng.uniform(), 0,
-            static_cast<std::int64_t>(d.size()));
+      d.add((a + 0.5) / side, (b + 0.5) / side, std::cos(ang), std::sin(ang), r,
+            1.0 + rng.uniform(), 0, static_cast<std::int64_t>(d.size()));
     }
   double px = 0, py = 0, m = 0;
   for (std::size_t i = 0; i < d.size(); ++i)
@@ -228,8 +232,8 @@ TEST_P(HardDiskPressure, CollisionVirialMatchesHendersonEquationOfState) {
     const int k = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
     for (std::size_t i = 0; i < n; ++i) {
       const double ang = 2.0 * kPi * rng.uniform();
-      d.add((i % k + 0.5) * side / k, (i / k + 0.5) * side / k, std::cos(ang), std::sin(ang), r, 1.0, 0,
-            static_cast<std::int64_t>(i));
+      d.add((i % k + 0.5) * side / k, (i / k + 0.5) * side / k, std::cos(ang), std::sin(ang), r,
+            1.0, 0, static_cast<std::int64_t>(i));
     }
   }
   HardDiskSystem sys(d, p);
@@ -394,11 +398,15 @@ void checkQueueAgainstOrderedSet(std::size_t n, int steps, std::size_t perBucket
       pending.insert({t, i});
     q.update(i, Timed{t});
   };
-  const double dt = 50.0 / static_cast<double>(n); // a disk's next event, on average, in phases 0 and 2
+  const double dt =
+      50.0 / static_cast<double>(n); // a disk's next event, on average, in phases 0 and 2
   double now = 0.0;
   int checked = 0;
   for (int step = 0; step < steps; ++step) {
-    const int phase = step < 4 * steps / 10 ? 0 : step < 5 * steps / 10 ? 1 : step < 6 * steps / 10 ? 2 : 3;
+    const int phase = step < 4 * steps / 10   ? 0
+                      : step < 5 * steps / 10 ? 1
+                      : step < 6 * steps / 10 ? 2
+                                              : 3;
     if (step == 5 * steps / 10)
       q.tune(now);
     const std::size_t expected = pending.empty() ? n : pending.begin()->second;
@@ -439,7 +447,8 @@ void checkQueueAgainstOrderedSet(std::size_t n, int steps, std::size_t perBucket
   }
   EXPECT_EQ(checked, steps);
   std::printf("%zu disks: %llu turns of the ring, %llu width changes, now at t = %.4g\n", n,
-              static_cast<unsigned long long>(q.turns()), static_cast<unsigned long long>(q.rebuilds()), now);
+              static_cast<unsigned long long>(q.turns()),
+              static_cast<unsigned long long>(q.rebuilds()), now);
   if (adapts) {
     EXPECT_GT(q.turns(), 10u);
     EXPECT_GT(q.rebuilds(), 3u); // the two tune() calls, and the ring widening and narrowing
@@ -448,7 +457,7 @@ void checkQueueAgainstOrderedSet(std::size_t n, int steps, std::size_t perBucket
 } // namespace
 
 TEST(EventQueue, AlwaysYieldsTheEarliestEventLowestIndexFirst) {
-  checkQueueAgainstOrderedSet(500, 400000, 0, true);  // a bucket per disk
-  checkQueueAgainstOrderedSet(2000, 400000, 7, true); // seven disks a bucket: chunk chains
+  checkQueueAgainstOrderedSet(500, 400000, 0, true);    // a bucket per disk
+  checkQueueAgainstOrderedSet(2000, 400000, 7, true);   // seven disks a bucket: chunk chains
   checkQueueAgainstOrderedSet(40000, 200000, 0, false); // the same, chosen for a large system
 }

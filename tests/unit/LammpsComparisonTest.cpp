@@ -75,7 +75,8 @@ Outcome runCraterKit(const ContactParams& c, double dt, int steps) {
 Outcome runLammps(const ContactParams& c, double dt, int steps, const std::string& dir) {
   const double r = 0.05, m = 2000 * 4.0 / 3.0 * M_PI * r * r * r, mu = m / 2, rbar = r / 2;
   const double kN = c.kN, kT = c.tangentialStiffness();
-  const double cN = dashpotCoefficient(kN, c.restitutionN, mu), cT = dashpotCoefficient(kT, c.restitutionT, mu);
+  const double cN = dashpotCoefficient(kN, c.restitutionN, mu),
+               cT = dashpotCoefficient(kT, c.restitutionT, mu);
   const double b = c.beta, br = b * rbar;
   std::ofstream(dir + "/in.oblique") << kLammpsInput;
   std::ostringstream cmd;
@@ -113,7 +114,8 @@ Outcome runLammps(const ContactParams& c, double dt, int steps, const std::strin
 TEST(LammpsComparison, ObliqueCollisionRebound) {
   if (!haveLammps())
     GTEST_SKIP() << "LAMMPS (lmp, Debian package lammps) is not installed: comparison skipped";
-  const auto dir = std::filesystem::temp_directory_path() / ("craterkit-lammps-" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("craterkit-lammps-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   // Mostly sticking (mu_s 0.6) and mostly sliding (0.1); rolling and twisting springs on.
   for (double muS : {0.6, 0.1}) {
@@ -129,7 +131,8 @@ TEST(LammpsComparison, ObliqueCollisionRebound) {
     for (int i = 0; i < 2; ++i)
       for (int k = 0; k < 3; ++k)
         // Rebound velocities within 2 % of the impact speed (1 m/s).
-        EXPECT_NEAR(ours.v[i][k], theirs.v[i][k], 0.02) << "mu_s " << muS << " particle " << i << " axis " << k;
+        EXPECT_NEAR(ours.v[i][k], theirs.v[i][k], 0.02)
+            << "mu_s " << muS << " particle " << i << " axis " << k;
     // Spins differ more by construction: LAMMPS rescales a slipping spring (pkdgrav zeroes
     // it) and applies the tangential force at R - δ/2 (pkdgrav at l_p). Within 10 %.
     EXPECT_NEAR(ours.w[0][2], theirs.w[0][2], 0.10 * std::abs(theirs.w[0][2])) << "mu_s " << muS;

@@ -1,6 +1,6 @@
 // Particle file formats: round trips, files written by LAMMPS itself, and malformed input.
-#include "common/Random.h"
 #include "io/ParticleFiles.h"
+#include "common/Random.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -8,12 +8,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 
@@ -113,11 +113,11 @@ TEST(LammpsDump, SeveralSnapshotsAndAnyColumnOrder) {
   const ParticleFrame f = parseDumpSnapshot(text, index[1], "two.dump");
   ASSERT_EQ(f.particles.size(), 2u);
   EXPECT_EQ(f.particles.id[0], 9);
-  EXPECT_EQ(f.particles.material[0], 1); // type 2
-  EXPECT_DOUBLE_EQ(f.particles.position[0], 0.5);   // xs 0.25 of [0, 2]
-  EXPECT_DOUBLE_EQ(f.particles.position[1], 0.0);   // ys 0.5 of [-1, 1]
-  EXPECT_DOUBLE_EQ(f.particles.position[2], 1.0);   // zs 0.1 of [0, 10]
-  EXPECT_DOUBLE_EQ(f.particles.radius[1], 0.2);     // diameter 0.4
+  EXPECT_EQ(f.particles.material[0], 1);          // type 2
+  EXPECT_DOUBLE_EQ(f.particles.position[0], 0.5); // xs 0.25 of [0, 2]
+  EXPECT_DOUBLE_EQ(f.particles.position[1], 0.0); // ys 0.5 of [-1, 1]
+  EXPECT_DOUBLE_EQ(f.particles.position[2], 1.0); // zs 0.1 of [0, 10]
+  EXPECT_DOUBLE_EQ(f.particles.radius[1], 0.2);   // diameter 0.4
   EXPECT_DOUBLE_EQ(f.particles.velocity[3], -0.5);
   EXPECT_FALSE(f.hasMass);
   ASSERT_EQ(f.extra.size(), 2u);
@@ -130,11 +130,14 @@ TEST(LammpsDump, SeveralSnapshotsAndAnyColumnOrder) {
 TEST(LammpsDump, MalformedInputNamesFileAndLine) {
   const std::string good = kHandDump;
   // Truncated: the last atom line is missing.
-  EXPECT_NE(dumpError(good.substr(0, good.rfind("-0.5"))).find("declares more atoms"), std::string::npos);
+  EXPECT_NE(dumpError(good.substr(0, good.rfind("-0.5"))).find("declares more atoms"),
+            std::string::npos);
   // A non-numeric field, reported on its line (line 11).
   std::string bad = good;
   bad.replace(bad.find("-0.5"), 4, "abc");
-  EXPECT_NE(dumpError(bad).find("bad.dump:11: expected a number for vx, got 'abc'"), std::string::npos) << dumpError(bad);
+  EXPECT_NE(dumpError(bad).find("bad.dump:11: expected a number for vx, got 'abc'"),
+            std::string::npos)
+      << dumpError(bad);
   // A missing coordinate column.
   bad = good;
   bad.replace(bad.find(" zs"), 3, " qq");
@@ -142,11 +145,13 @@ TEST(LammpsDump, MalformedInputNamesFileAndLine) {
   // A count no file of this size could hold.
   bad = good;
   bad.replace(bad.find("\n2\n"), 3, "\n999999999999\n");
-  EXPECT_NE(dumpError(bad).find("exceeds what the rest of the file can hold"), std::string::npos) << dumpError(bad);
+  EXPECT_NE(dumpError(bad).find("exceeds what the rest of the file can hold"), std::string::npos)
+      << dumpError(bad);
   // A row with too few values.
   bad = good;
   bad.replace(bad.find(" 43"), 3, "");
-  EXPECT_NE(dumpError(bad).find("expected 11 values, found 10"), std::string::npos) << dumpError(bad);
+  EXPECT_NE(dumpError(bad).find("expected 11 values, found 10"), std::string::npos)
+      << dumpError(bad);
   EXPECT_NE(dumpError("").find("no snapshot"), std::string::npos);
   EXPECT_NE(dumpError("hello\n").find("expected an 'ITEM:' line"), std::string::npos);
   bad = good;
@@ -166,7 +171,8 @@ TEST(PkdgravSs, RoundTripIsBitExact) {
   // With pkdgrav units the values round-trip to a few ulps.
   const ParticleFrame h = parseSs(writeSs(f, true), "mem.ss", true);
   for (std::size_t i = 0; i < f.particles.position.size(); ++i)
-    EXPECT_NEAR(h.particles.position[i], f.particles.position[i], 4e-16 * std::abs(f.particles.position[i]));
+    EXPECT_NEAR(h.particles.position[i], f.particles.position[i],
+                4e-16 * std::abs(f.particles.position[i]));
   EXPECT_NEAR(h.time, f.time, 1e-15);
   EXPECT_NEAR(PkdgravUnits::time(), 365.25 * 86400 / (2 * M_PI), 2e-4 * PkdgravUnits::time());
 }
@@ -198,10 +204,12 @@ TEST(PkdgravSs, MalformedInputNamesTheByteOffset) {
 
 TEST(ParticleFiles, GzipDumpsReadLikePlainOnesAndBadGzipIsNamed) {
   const std::string text = writeDump(randomFrame(50, 4));
-  const std::string path = (std::filesystem::temp_directory_path() / "craterkit_test.dump.gz").string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "craterkit_test.dump.gz").string();
   gzFile gz = gzopen(path.c_str(), "wb");
   ASSERT_NE(gz, nullptr);
-  ASSERT_EQ(gzwrite(gz, text.data(), static_cast<unsigned>(text.size())), static_cast<int>(text.size()));
+  ASSERT_EQ(gzwrite(gz, text.data(), static_cast<unsigned>(text.size())),
+            static_cast<int>(text.size()));
   gzclose(gz);
   EXPECT_EQ(readFileBytes(path), text);
   // Truncated compressed stream.
@@ -210,12 +218,15 @@ TEST(ParticleFiles, GzipDumpsReadLikePlainOnesAndBadGzipIsNamed) {
     std::ifstream in(path, std::ios::binary);
     raw.assign(std::istreambuf_iterator<char>(in), {});
   }
-  EXPECT_NE(parseError([&] { gunzip(raw.substr(0, raw.size() / 2), "half.gz"); }).find("half.gz"), std::string::npos);
+  EXPECT_NE(parseError([&] { gunzip(raw.substr(0, raw.size() / 2), "half.gz"); }).find("half.gz"),
+            std::string::npos);
   std::string corrupt = raw;
   for (std::size_t k = 20; k < 40 && k < corrupt.size(); ++k)
     corrupt[k] = static_cast<char>(~corrupt[k]);
-  EXPECT_NE(parseError([&] { gunzip(corrupt, "corrupt.gz"); }).find("corrupt.gz"), std::string::npos);
-  EXPECT_NE(parseError([&] { readFileBytes("/nonexistent/x.dump"); }).find("cannot open"), std::string::npos);
+  EXPECT_NE(parseError([&] { gunzip(corrupt, "corrupt.gz"); }).find("corrupt.gz"),
+            std::string::npos);
+  EXPECT_NE(parseError([&] { readFileBytes("/nonexistent/x.dump"); }).find("cannot open"),
+            std::string::npos);
   std::filesystem::remove(path);
 }
 
@@ -223,7 +234,8 @@ TEST(ParticleFiles, GzipDumpsReadLikePlainOnesAndBadGzipIsNamed) {
 TEST(LammpsDump, ReadsWhatLammpsWritesAndMatchesItsThermo) {
   if (std::system("command -v lmp > /dev/null 2>&1") != 0)
     GTEST_SKIP() << "LAMMPS (lmp, Debian package lammps) is not installed: skipped";
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "craterkit_lammps_dump";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "craterkit_lammps_dump";
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "in.dump") << R"(units si
 atom_style sphere
@@ -246,7 +258,8 @@ dump d all custom 1 dump.out id type x y z vx vy vz radius mass
 dump_modify d format float %.17g
 run 0
 )";
-  const std::string cmd = "cd '" + dir.string() + "' && timeout 120 lmp -in in.dump -log log.out -screen none";
+  const std::string cmd =
+      "cd '" + dir.string() + "' && timeout 120 lmp -in in.dump -log log.out -screen none";
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   // Thermo line after the header "Step v_n c_m v_vxm".
   std::ifstream log(dir / "log.out");
@@ -312,13 +325,15 @@ TEST(LammpsDump, LargeSnapshotsParseInParallelAndReportTheFirstBadRow) {
   text.insert(lineStart(30010), "y");
   for (int threads : {1, 2, 3}) {
     omp_set_num_threads(threads);
-    EXPECT_NE(dumpError(text).find("bad.dump:30010: expected an integer for id, got 'y"), std::string::npos)
+    EXPECT_NE(dumpError(text).find("bad.dump:30010: expected an integer for id, got 'y"),
+              std::string::npos)
         << dumpError(text);
   }
   text.insert(text.find('\n', lineStart(20010)), " 7");
   for (int threads : {1, 2, 3}) {
     omp_set_num_threads(threads);
-    EXPECT_NE(dumpError(text).find("bad.dump:20010: expected 17 values, found 18"), std::string::npos)
+    EXPECT_NE(dumpError(text).find("bad.dump:20010: expected 17 values, found 18"),
+              std::string::npos)
         << dumpError(text);
   }
   omp_set_num_threads(threadsBefore);
@@ -355,7 +370,8 @@ TEST(ParticleFiles, ReadsTheLiggghtsSampleSeries) {
 // FileBytes maps a plain file in place and decompresses a gzip one; both give the file's bytes,
 // so .ss parsing through it equals parsing the copied bytes; errors name the file.
 TEST(ParticleFiles, FileBytesMapsPlainFilesAndInflatesGzip) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("ck_filebytes_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("ck_filebytes_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const ParticleFrame f = randomFrame(100, 5);
   const std::string bytes = writeSs(f, false);
@@ -373,7 +389,10 @@ TEST(ParticleFiles, FileBytesMapsPlainFilesAndInflatesGzip) {
   const std::string empty = (dir / "empty.ss").string();
   std::ofstream(empty).close();
   EXPECT_TRUE(FileBytes(empty).view().empty());
-  EXPECT_NE(parseError([&] { FileBytes((dir / "missing.ss").string()); }).find("missing.ss: cannot open"), std::string::npos);
-  EXPECT_NE(parseError([&] { FileBytes(dir.string()); }).find("not a regular file"), std::string::npos);
+  EXPECT_NE(
+      parseError([&] { FileBytes((dir / "missing.ss").string()); }).find("missing.ss: cannot open"),
+      std::string::npos);
+  EXPECT_NE(parseError([&] { FileBytes(dir.string()); }).find("not a regular file"),
+            std::string::npos);
   std::filesystem::remove_all(dir);
 }

@@ -8,9 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <initializer_list>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 
 using namespace craterkit;
 
@@ -22,8 +22,9 @@ template <class K> double latticeSum(double h, double dx, const double offset[3]
   for (int i = -n; i <= n; ++i)
     for (int j = -n; j <= n; ++j)
       for (int k = -n; k <= n; ++k) {
-        const double r = std::sqrt(std::pow(i * dx - offset[0], 2) + std::pow(j * dx - offset[1], 2) +
-                                   std::pow(k * dx - offset[2], 2));
+        const double r =
+            std::sqrt(std::pow(i * dx - offset[0], 2) + std::pow(j * dx - offset[1], 2) +
+                      std::pow(k * dx - offset[2], 2));
         sum += K::W(r, h) * dx * dx * dx;
       }
   return sum;
@@ -37,7 +38,8 @@ template <class K> void checkKernel(std::initializer_list<double> ratios) {
   for (double ratio : ratios) {
     const double zero[3] = {0, 0, 0}, off[3] = {0.31 / ratio, 0.17 / ratio, 0.05 / ratio};
     EXPECT_NEAR(latticeSum<K>(h, h / ratio, zero), 1.0, 0.01) << K::name << " h/dx " << ratio;
-    EXPECT_NEAR(latticeSum<K>(h, h / ratio, off), 1.0, 0.01) << K::name << " off-lattice, h/dx " << ratio;
+    EXPECT_NEAR(latticeSum<K>(h, h / ratio, off), 1.0, 0.01)
+        << K::name << " off-lattice, h/dx " << ratio;
   }
   // Compact support and a continuous, monotone profile.
   EXPECT_EQ(K::W(h, h), 0.0);
@@ -46,7 +48,8 @@ template <class K> void checkKernel(std::initializer_list<double> ratios) {
   EXPECT_NEAR(K::W(0.5 * h - 1e-12, h), K::W(0.5 * h + 1e-12, h), 1e-9);
   for (double r = 0.01; r < 1.0; r += 0.01) {
     const double e = 1e-6;
-    EXPECT_NEAR(K::dWdr(r, h), (K::W(r + e, h) - K::W(r - e, h)) / (2 * e), 1e-5) << K::name << " r " << r;
+    EXPECT_NEAR(K::dWdr(r, h), (K::W(r + e, h) - K::W(r - e, h)) / (2 * e), 1e-5)
+        << K::name << " r " << r;
     EXPECT_LE(K::dWdr(r, h), 0.0);
   }
   // Antisymmetry: ∇_a W_ab = −∇_b W_ba for any pair.
@@ -66,22 +69,29 @@ template <class K> void checkKernel(std::initializer_list<double> ratios) {
 const std::string materials = std::string(CRATERKIT_SOURCE_DIR) + "/data/materials";
 } // namespace
 
-TEST(SphKernel, CubicSplineIsNormalisedSmoothAndCompact) { checkKernel<CubicSpline>({2.0, 2.5, 3.0}); }
-TEST(SphKernel, WendlandC2IsNormalisedSmoothAndCompact) { checkKernel<WendlandC2>({3.0, 3.5, 4.0}); }
+TEST(SphKernel, CubicSplineIsNormalisedSmoothAndCompact) {
+  checkKernel<CubicSpline>({2.0, 2.5, 3.0});
+}
+TEST(SphKernel, WendlandC2IsNormalisedSmoothAndCompact) {
+  checkKernel<WendlandC2>({3.0, 3.5, 4.0});
+}
 
 TEST(Tillotson, BasaltReferenceStatesAndBranches) {
   const Material basalt = findMaterial(materials, "basalt");
   const EquationOfState& eos = basalt.eos;
   const double rho0 = 2700.0;
   EXPECT_EQ(eos.pressure(rho0, 0.0), 0.0);
-  EXPECT_NEAR(eos.pressure(1.1 * rho0, 0.0), 26.7e9 * 0.1 + 26.7e9 * 0.01, 1e-12 * 2.937e9); // 2.937 GPa
-  EXPECT_NEAR(eos.pressure(1.1 * rho0, 1e6), 8.87e9, 0.005e9);                     // PHYSICS.md 2.9
+  EXPECT_NEAR(eos.pressure(1.1 * rho0, 0.0), 26.7e9 * 0.1 + 26.7e9 * 0.01,
+              1e-12 * 2.937e9);                                // 2.937 GPa
+  EXPECT_NEAR(eos.pressure(1.1 * rho0, 1e6), 8.87e9, 0.005e9); // PHYSICS.md 2.9
   // Bulk sound speed at the reference state: sqrt(A / ρ0) = 3145 m/s.
   EXPECT_NEAR(eos.soundSpeed(rho0, 0.0), std::sqrt(26.7e9 / rho0), 0.001 * 3145.0);
   // The hybrid branch joins the compressed and expanded ones at Eiv and Ecv (ρ < ρ0).
   const double rho = 0.95 * rho0, Eiv = 4.72e6, Ecv = 18.2e6;
-  EXPECT_NEAR(eos.pressure(rho, Eiv + 1.0), eos.pressure(rho, Eiv), 1e-6 * std::abs(eos.pressure(rho, Eiv)) + 10.0);
-  EXPECT_NEAR(eos.pressure(rho, Ecv - 1.0), eos.pressure(rho, Ecv), 1e-6 * std::abs(eos.pressure(rho, Ecv)) + 10.0);
+  EXPECT_NEAR(eos.pressure(rho, Eiv + 1.0), eos.pressure(rho, Eiv),
+              1e-6 * std::abs(eos.pressure(rho, Eiv)) + 10.0);
+  EXPECT_NEAR(eos.pressure(rho, Ecv - 1.0), eos.pressure(rho, Ecv),
+              1e-6 * std::abs(eos.pressure(rho, Ecv)) + 10.0);
   // No cold tension below rho_limit.
   EXPECT_EQ(eos.pressure(0.85 * rho0, 1e6), 0.0);
   // Sound speed positive and finite across the compressed, hybrid and expanded branches.
@@ -97,7 +107,7 @@ TEST(EquationOfState, IdealGasAndMurnaghan) {
   gas.model = EquationOfState::Model::IdealGas;
   gas.gamma = 1.4;
   gas.validate();
-  EXPECT_DOUBLE_EQ(gas.pressure(1.0, 2.5), 1.0);          // Sod's left state
+  EXPECT_DOUBLE_EQ(gas.pressure(1.0, 2.5), 1.0); // Sod's left state
   EXPECT_NEAR(gas.soundSpeed(1.0, 2.5), std::sqrt(1.4), 1e-12);
   EquationOfState m;
   m.model = EquationOfState::Model::Murnaghan;
@@ -124,7 +134,8 @@ TEST(Materials, LibraryFilesParseAndNamesAreChecked) {
     findMaterial(materials, "cheese");
     FAIL() << "no error for an unknown material";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("unknown material 'cheese' (known: aluminium, basalt"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("unknown material 'cheese' (known: aluminium, basalt"),
+              std::string::npos);
   }
   const auto bad = std::filesystem::temp_directory_path() / "craterkit_bad.cfg";
   std::ofstream(bad) << "name = x\neos = Tillotson\nA = lots\n";
@@ -132,7 +143,9 @@ TEST(Materials, LibraryFilesParseAndNamesAreChecked) {
     readMaterial(bad.string());
     FAIL() << "no error for a non-numeric value";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("craterkit_bad.cfg:3: 'A' needs one finite number"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("craterkit_bad.cfg:3: 'A' needs one finite number"),
+              std::string::npos)
+        << e.what();
   }
   std::ofstream(bad) << "name = x\neos = Tillotson\nrho0 = -5\n";
   EXPECT_THROW(readMaterial(bad.string()), InputError);

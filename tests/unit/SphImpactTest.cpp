@@ -35,7 +35,9 @@ double totalMass(const SphState& s) {
 }
 
 std::string tempPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("craterkit_" + name + "_" + std::to_string(::getpid()))).string();
+  return (std::filesystem::temp_directory_path() /
+          ("craterkit_" + name + "_" + std::to_string(::getpid())))
+      .string();
 }
 
 } // namespace
@@ -44,7 +46,8 @@ std::string tempPath(const std::string& name) {
 // compaction and the step's error control all run) gives the same bits on one and two threads.
 TEST(SphImpact, ThreadCountDoesNotChangeTheSciRun) {
   const SphImpactProblem prob = buildImpact(sciSetup());
-  ASSERT_GT(prob.state.size(), 8000u); // above the size from which every per-particle loop is threaded
+  ASSERT_GT(prob.state.size(),
+            8000u); // above the size from which every per-particle loop is threaded
   auto run = [&](int threads) {
     omp_set_num_threads(threads);
     SphSolver solver(prob.state, prob.params);
@@ -88,10 +91,12 @@ TEST(SphImpact, SciDefaultRunConservesMomentumAndEnergy) {
   s.totalMomentum(P);
   const double expectedPz = P0[2] + M * prob.params.gravity[2] * s.time();
   const double E = s.totalEnergy();
-  std::printf("SCI default: %zu particles, %zu steps to %.1e s; momentum error (%.2e, %.2e, %.2e) of |P0| = %.0f; "
+  std::printf("SCI default: %zu particles, %zu steps to %.1e s; momentum error (%.2e, %.2e, %.2e) "
+              "of |P0| = %.0f; "
               "energy change %.3e of E0; kinetic energy %.3f of its start; internal %.3f of E0\n",
-              prob.state.size(), s.steps(), s.time(), P[0] / 4000.0, P[1] / 4000.0, (P[2] - expectedPz) / 4000.0,
-              std::abs(P0[2]), (E - E0) / E0, s.kineticEnergy() / KE0, s.internalEnergy() / E0);
+              prob.state.size(), s.steps(), s.time(), P[0] / 4000.0, P[1] / 4000.0,
+              (P[2] - expectedPz) / 4000.0, std::abs(P0[2]), (E - E0) / E0, s.kineticEnergy() / KE0,
+              s.internalEnergy() / E0);
   EXPECT_NEAR(P[0], 0.0, 1e-11 * 4000.0);
   EXPECT_NEAR(P[1], 0.0, 1e-11 * 4000.0);
   EXPECT_NEAR(P[2], expectedPz, 1e-11 * 4000.0);
@@ -190,7 +195,8 @@ TEST(SphImpact, ContainerTakesUpTheMomentumThatReachesIt) {
       EXPECT_EQ(nc, 0u);
     } else {
       const double R = setup.targetRadius, Rw = R + 3.0 * prob.spacing;
-      const double shell = 2.0 / 3.0 * M_PI * (Rw * Rw * Rw - R * R * R) / std::pow(prob.spacing, 3);
+      const double shell =
+          2.0 / 3.0 * M_PI * (Rw * Rw * Rw - R * R * R) / std::pow(prob.spacing, 3);
       EXPECT_NEAR(static_cast<double>(nc), shell, 0.05 * shell);
       ASSERT_EQ(prob.params.materials.size(), 3u);
       EXPECT_TRUE(prob.params.materials[2].rigid);
@@ -211,8 +217,9 @@ TEST(SphImpact, ContainerTakesUpTheMomentumThatReachesIt) {
         outer[contained] -= s.state().mass[i] * s.state().v[3 * i + 2] / 4000.0;
     }
   }
-  std::printf("outer-layer downward momentum at %.1e s: free %.3f, contained %.3f of the impactor's\n", tEnd,
-              outer[0], outer[1]);
+  std::printf(
+      "outer-layer downward momentum at %.1e s: free %.3f, contained %.3f of the impactor's\n",
+      tEnd, outer[0], outer[1]);
   EXPECT_GT(outer[0], 0.1);
   EXPECT_LT(std::abs(outer[1]), 0.3 * outer[0]);
 }
@@ -326,7 +333,9 @@ TEST(SphImpact, GradedTargetKeepsTheMassAndCoarsensOutwards) {
       mass += st.mass[i];
       mx += st.mass[i] * st.x[3 * i];
       my += st.mass[i] * st.x[3 * i + 1];
-      outer = std::max(outer, std::sqrt(st.x[3 * i] * st.x[3 * i] + st.x[3 * i + 1] * st.x[3 * i + 1] + st.x[3 * i + 2] * st.x[3 * i + 2]));
+      outer =
+          std::max(outer, std::sqrt(st.x[3 * i] * st.x[3 * i] + st.x[3 * i + 1] * st.x[3 * i + 1] +
+                                    st.x[3 * i + 2] * st.x[3 * i + 2]));
     }
   // The shells end within one (coarse) spacing beyond the radius asked for.
   EXPECT_GE(outer, s.targetRadius - 4.0 * dx);
@@ -336,7 +345,8 @@ TEST(SphImpact, GradedTargetKeepsTheMassAndCoarsensOutwards) {
   double rContainer = 1e300, tContainer = 0.0;
   for (std::size_t i = 0; i < st.size(); ++i)
     if (st.material[i] == 2) {
-      const double r = std::sqrt(st.x[3 * i] * st.x[3 * i] + st.x[3 * i + 1] * st.x[3 * i + 1] + st.x[3 * i + 2] * st.x[3 * i + 2]);
+      const double r = std::sqrt(st.x[3 * i] * st.x[3 * i] + st.x[3 * i + 1] * st.x[3 * i + 1] +
+                                 st.x[3 * i + 2] * st.x[3 * i + 2]);
       if (r < rContainer)
         rContainer = r, tContainer = std::cbrt(st.mass[i] / rho);
     }
@@ -352,13 +362,15 @@ TEST(SphImpact, GradedTargetKeepsTheMassAndCoarsensOutwards) {
     double best = 1e300;
     for (std::size_t j = g.impactorParticles; j < st.size(); ++j)
       if (j != i) {
-        const double dxj = st.x[3 * j] - st.x[3 * i], dyj = st.x[3 * j + 1] - st.x[3 * i + 1], dzj = st.x[3 * j + 2] - st.x[3 * i + 2];
+        const double dxj = st.x[3 * j] - st.x[3 * i], dyj = st.x[3 * j + 1] - st.x[3 * i + 1],
+                     dzj = st.x[3 * j + 2] - st.x[3 * i + 2];
         best = std::min(best, dxj * dxj + dyj * dyj + dzj * dzj);
       }
     const double own = std::cbrt(st.mass[i] / rho); // the particle's own spacing
     smallestRatio = std::min(smallestRatio, std::sqrt(best) / own);
     largestRatio = std::max(largestRatio, std::sqrt(best) / own);
-    const double r = std::sqrt(st.x[3 * i] * st.x[3 * i] + st.x[3 * i + 1] * st.x[3 * i + 1] + st.x[3 * i + 2] * st.x[3 * i + 2]);
+    const double r = std::sqrt(st.x[3 * i] * st.x[3 * i] + st.x[3 * i + 1] * st.x[3 * i + 1] +
+                               st.x[3 * i + 2] * st.x[3 * i + 2]);
     if (r < 0.1)
       coreSpacing = std::max(coreSpacing, own);
     if (st.material[i] == 1 && r > 0.45)

@@ -1,7 +1,7 @@
 // The Sod shock tube in a 3D slab of SPH particles against the exact Riemann solution, and
 // the conservation of momentum and energy by the hydrodynamic core.
-#include "sph/SphSolver.h"
 #include "common/Random.h"
+#include "sph/SphSolver.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -55,7 +55,8 @@ struct Riemann {
   // Density, velocity and pressure at x/t = s (left rarefaction and right shock, as in Sod).
   void sample(double s, double& r, double& u, double& p) const {
     if (s <= us) {
-      const double head = ul - cl, css = cl * std::pow(ps / pl, (g - 1.0) / (2.0 * g)), tail = us - css;
+      const double head = ul - cl, css = cl * std::pow(ps / pl, (g - 1.0) / (2.0 * g)),
+                   tail = us - css;
       if (s <= head) {
         r = rl, u = ul, p = pl;
       } else if (s >= tail) {
@@ -67,7 +68,8 @@ struct Riemann {
         p = pl * std::pow(c / cl, 2.0 * g / (g - 1.0));
       }
     } else {
-      const double shock = ur + cr * std::sqrt((g + 1.0) / (2.0 * g) * ps / pr + (g - 1.0) / (2.0 * g));
+      const double shock =
+          ur + cr * std::sqrt((g + 1.0) / (2.0 * g) * ps / pr + (g - 1.0) / (2.0 * g));
       if (s >= shock) {
         r = rr, u = ur, p = pr;
       } else {
@@ -76,7 +78,9 @@ struct Riemann {
       }
     }
   }
-  double shockSpeed() const { return ur + cr * std::sqrt((g + 1.0) / (2.0 * g) * ps / pr + (g - 1.0) / (2.0 * g)); }
+  double shockSpeed() const {
+    return ur + cr * std::sqrt((g + 1.0) / (2.0 * g) * ps / pr + (g - 1.0) / (2.0 * g));
+  }
 };
 
 // Two Sod interfaces at x = ±0.5 in a periodic box [-1, 1) x [0, W)²: the centre holds the
@@ -91,7 +95,8 @@ SphState sodSlab(double dx, double width, double gamma) {
     for (int i = 0; i < nx; ++i)
       for (int j = 0; j < ny; ++j)
         for (int k = 0; k < ny; ++k) {
-          const double pos[3] = {x0 + (i + 0.5) * spacing, (j + 0.5) * spacing, (k + 0.5) * spacing};
+          const double pos[3] = {x0 + (i + 0.5) * spacing, (j + 0.5) * spacing,
+                                 (k + 0.5) * spacing};
           s.add(pos, zero, m, rho, p / ((gamma - 1.0) * rho), 0);
         }
   };
@@ -146,7 +151,8 @@ TEST(SphShockTube, SodProfilesMatchTheExactRiemannSolution) {
     pre[b] += solver.pressure()[i];
   }
   const double t = solver.time();
-  const double edges[5] = {-exact.cl * t, (exact.us - exact.cl * std::pow(exact.ps / exact.pl, 0.2 / 2.8)) * t,
+  const double edges[5] = {-exact.cl * t,
+                           (exact.us - exact.cl * std::pow(exact.ps / exact.pl, 0.2 / 2.8)) * t,
                            exact.us * t, exact.shockSpeed() * t, 0.0};
   double err[3] = {0, 0, 0}, ref[3] = {0, 0, 0};
   int used = 0;
@@ -160,7 +166,8 @@ TEST(SphShockTube, SodProfilesMatchTheExactRiemannSolution) {
     double r, u, p;
     exact.sample(xc / t, r, u, p);
     if (std::getenv("SOD_DEBUG"))
-      std::printf("%6.3f  rho %.3f/%.3f  u %.3f/%.3f  p %.3f/%.3f\n", xc, rho[b] / n[b], r, vel[b] / n[b], u, pre[b] / n[b], p);
+      std::printf("%6.3f  rho %.3f/%.3f  u %.3f/%.3f  p %.3f/%.3f\n", xc, rho[b] / n[b], r,
+                  vel[b] / n[b], u, pre[b] / n[b], p);
     err[0] += std::abs(rho[b] / n[b] - r);
     ref[0] += r;
     err[1] += std::abs(vel[b] / n[b] - u);
@@ -169,8 +176,9 @@ TEST(SphShockTube, SodProfilesMatchTheExactRiemannSolution) {
     ref[2] += p;
     ++used;
   }
-  std::printf("Sod at t = %.3f: L1 density %.2f %%, velocity %.2f %%, pressure %.2f %% over %d bins\n", t,
-              100 * err[0] / ref[0], 100 * err[1] / ref[1], 100 * err[2] / ref[2], used);
+  std::printf(
+      "Sod at t = %.3f: L1 density %.2f %%, velocity %.2f %%, pressure %.2f %% over %d bins\n", t,
+      100 * err[0] / ref[0], 100 * err[1] / ref[1], 100 * err[2] / ref[2], used);
   EXPECT_GT(used, 25); // bins left after excluding ±0.05 around the four wave edges
   EXPECT_LT(err[0] / ref[0], 0.05);
   EXPECT_LT(err[1] / ref[1], 0.05);
@@ -221,71 +229,74 @@ TEST(SphSolver, FragmentsFlyingIntoABodyAreNeverMissedByTheNeighbourLists) {
   // Fragments of the block's particles' mass, and of an eighth of it (half its h: the block
   // and the fragments then sit on different levels of the neighbour grid).
   for (double light : {1.0, 0.125})
-  for (bool periodic : {false, true}) {
-    SphParams par;
-    par.materials = {fluidMaterial(eos)};
-    if (periodic) {
-      par.periodic[0] = true;
-      par.boxLo[0] = -0.2, par.boxHi[0] = 0.4;
-    }
-    SphState s;
-    const double rest[3] = {0.0, 0.0, 0.0};
-    for (int i = 0; i < 10; ++i)
-      for (int j = 0; j < 10; ++j)
-        for (int k = 0; k < 10; ++k) {
-          const double x[3] = {i * dx, j * dx, k * dx};
-          s.add(x, rest, m, rho, 0.0, 0);
-        }
-    const std::size_t block = s.size();
-    // A clump of two (listed with each other) from +x (or, periodic, flying +x through the face
-    // at 0.4 m onto the block's -x side), 0.3 m off, and a lone fragment from -y.
-    const double dir = periodic ? 1.0 : -1.0, x0 = periodic ? 0.245 : 0.345;
-    const double c1[3] = {x0, 0.045, 0.045}, c2[3] = {x0 + 0.006, 0.045, 0.045}, lone[3] = {0.045, -0.30, 0.045};
-    const double vc[3] = {dir * v, 0.0, 0.0}, vl[3] = {0.0, v, 0.0};
-    s.add(c1, vc, light * m, rho, 0.0, 0);
-    s.add(c2, vc, light * m, rho, 0.0, 0);
-    s.add(lone, vl, light * m, rho, 0.0, 0);
-    SphSolver solver(s, par);
-    double closest = INFINITY; // of a fragment to the nearest block particle, over the run
-    std::size_t steps = 0;
-    while (solver.time() < 0.3 / v + 0.004) {
-      solver.step();
-      ++steps;
-      const SphState& now = solver.state();
-      for (std::size_t f = block; f < now.size(); ++f)
-        for (std::size_t b = 0; b < block; ++b) {
-          double d2 = 0.0;
-          for (int k = 0; k < 3; ++k) {
-            double d = now.x[3 * f + k] - now.x[3 * b + k];
-            if (par.periodic[k])
-              d -= (par.boxHi[k] - par.boxLo[k]) * std::round(d / (par.boxHi[k] - par.boxLo[k]));
-            d2 += d * d;
+    for (bool periodic : {false, true}) {
+      SphParams par;
+      par.materials = {fluidMaterial(eos)};
+      if (periodic) {
+        par.periodic[0] = true;
+        par.boxLo[0] = -0.2, par.boxHi[0] = 0.4;
+      }
+      SphState s;
+      const double rest[3] = {0.0, 0.0, 0.0};
+      for (int i = 0; i < 10; ++i)
+        for (int j = 0; j < 10; ++j)
+          for (int k = 0; k < 10; ++k) {
+            const double x[3] = {i * dx, j * dx, k * dx};
+            s.add(x, rest, m, rho, 0.0, 0);
           }
-          closest = std::min(closest, std::sqrt(d2));
-        }
+      const std::size_t block = s.size();
+      // A clump of two (listed with each other) from +x (or, periodic, flying +x through the face
+      // at 0.4 m onto the block's -x side), 0.3 m off, and a lone fragment from -y.
+      const double dir = periodic ? 1.0 : -1.0, x0 = periodic ? 0.245 : 0.345;
+      const double c1[3] = {x0, 0.045, 0.045}, c2[3] = {x0 + 0.006, 0.045, 0.045},
+                   lone[3] = {0.045, -0.30, 0.045};
+      const double vc[3] = {dir * v, 0.0, 0.0}, vl[3] = {0.0, v, 0.0};
+      s.add(c1, vc, light * m, rho, 0.0, 0);
+      s.add(c2, vc, light * m, rho, 0.0, 0);
+      s.add(lone, vl, light * m, rho, 0.0, 0);
+      SphSolver solver(s, par);
+      double closest = INFINITY; // of a fragment to the nearest block particle, over the run
+      std::size_t steps = 0;
+      while (solver.time() < 0.3 / v + 0.004) {
+        solver.step();
+        ++steps;
+        const SphState& now = solver.state();
+        for (std::size_t f = block; f < now.size(); ++f)
+          for (std::size_t b = 0; b < block; ++b) {
+            double d2 = 0.0;
+            for (int k = 0; k < 3; ++k) {
+              double d = now.x[3 * f + k] - now.x[3 * b + k];
+              if (par.periodic[k])
+                d -= (par.boxHi[k] - par.boxLo[k]) * std::round(d / (par.boxHi[k] - par.boxLo[k]));
+              d2 += d * d;
+            }
+            closest = std::min(closest, std::sqrt(d2));
+          }
+      }
+      double blockP[3] = {0.0, 0.0, 0.0};
+      const SphState& end = solver.state();
+      for (std::size_t b = 0; b < block; ++b)
+        for (int k = 0; k < 3; ++k)
+          blockP[k] += m * end.v[3 * b + k];
+      std::printf("%s, fragments of %.3g the mass: %zu steps; closest approach %.3g dx; block "
+                  "momentum (%.3g, %.3g) of the "
+                  "fragments' (%.3g, %.3g)\n",
+                  periodic ? "periodic in x" : "open", light, steps, closest / dx, blockP[0],
+                  blockP[1], 2.0 * dir * light * m * v, light * m * v);
+      EXPECT_GT(steps, 200u);       // far more steps than the margin lasts for fragments this fast
+      EXPECT_GT(closest, 0.9 * dx); // the block's pressure stopped them (1.25 dx measured)
+      EXPECT_GT(dir * blockP[0], 0.3 * 2.0 * light * m * v); // and took up their momentum
+      EXPECT_GT(blockP[1], 0.3 * light * m * v);
     }
-    double blockP[3] = {0.0, 0.0, 0.0};
-    const SphState& end = solver.state();
-    for (std::size_t b = 0; b < block; ++b)
-      for (int k = 0; k < 3; ++k)
-        blockP[k] += m * end.v[3 * b + k];
-    std::printf("%s, fragments of %.3g the mass: %zu steps; closest approach %.3g dx; block momentum (%.3g, %.3g) of the "
-                "fragments' (%.3g, %.3g)\n",
-                periodic ? "periodic in x" : "open", light, steps, closest / dx, blockP[0], blockP[1],
-                2.0 * dir * light * m * v, light * m * v);
-    EXPECT_GT(steps, 200u);       // far more steps than the margin lasts for fragments this fast
-    EXPECT_GT(closest, 0.9 * dx); // the block's pressure stopped them (1.25 dx measured)
-    EXPECT_GT(dir * blockP[0], 0.3 * 2.0 * light * m * v); // and took up their momentum
-    EXPECT_GT(blockP[1], 0.3 * light * m * v);
-  }
 }
 
 // The neighbour lists of particles whose smoothing lengths span a factor of ten (a graded
 // target: each level of h gets its own cell grid, and pairs with finer particles are handed
 // over from their side) hold exactly the pairs that a search over all pairs and all periodic
 // images finds: r below 1.05 max(h_a, h_b) (the list's allowance for h growing) plus the
-// larger of the two particles' margins (each at least 0.15 h, the default skin). Open space and a box periodic in x and z; at the first build (no margin) and after a
-// step (the margin set by the motion).
+// larger of the two particles' margins (each at least 0.15 h, the default skin). Open space and a
+// box periodic in x and z; at the first build (no margin) and after a step (the margin set by the
+// motion).
 TEST(SphSolver, NeighbourListsOfGradedSmoothingLengthsHoldExactlyThePairsInRange) {
   EquationOfState eos;
   eos.model = EquationOfState::Model::Murnaghan;
@@ -335,18 +346,21 @@ TEST(SphSolver, NeighbourListsOfGradedSmoothingLengthsHoldExactlyThePairsInRange
                 continue;
               if (b == a && !sx && !sz)
                 continue;
-              const double d[3] = {before.x[3 * a] - before.x[3 * b] - sx * L, before.x[3 * a + 1] - before.x[3 * b + 1],
+              const double d[3] = {before.x[3 * a] - before.x[3 * b] - sx * L,
+                                   before.x[3 * a + 1] - before.x[3 * b + 1],
                                    before.x[3 * a + 2] - before.x[3 * b + 2] - sz * L};
               const double cut = 1.05 * std::max(before.h[a], before.h[b]) +
                                  std::max(solver.neighbourMargin(a), solver.neighbourMargin(b));
               if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut)
-                expected.push_back(static_cast<std::uint32_t>(b * 32 + (sx + 1) + 3 + 9 * (sz + 1)));
+                expected.push_back(
+                    static_cast<std::uint32_t>(b * 32 + (sx + 1) + 3 + 9 * (sz + 1)));
             }
         std::sort(expected.begin(), expected.end());
         pairs += expected.size();
         mismatched += expected != solver.neighboursOf(a);
       }
-      std::printf("%s, build %d (margins up to %.3g m): %zu listed pairs, %zu particles with a list unlike the search's\n",
+      std::printf("%s, build %d (margins up to %.3g m): %zu listed pairs, %zu particles with a "
+                  "list unlike the search's\n",
                   periodic ? "periodic in x and z" : "open", build, margin, pairs, mismatched);
       EXPECT_GT(pairs, 10u * before.size());
       EXPECT_EQ(mismatched, 0u);
@@ -398,7 +412,8 @@ TEST(SphSolver, KeptNeighbourListsFollowParticlesThroughPeriodicFaces) {
       }
       drho = std::max(drho, std::abs(kept.rho[i] - rebuilt.rho[i]));
     }
-    std::printf("%s: kept against rebuilt lists: velocity %.3g m/s, density %.3g kg/m^3 apart (largest velocity "
+    std::printf("%s: kept against rebuilt lists: velocity %.3g m/s, density %.3g kg/m^3 apart "
+                "(largest velocity "
                 "change %.3g m/s)\n",
                 graded ? "graded" : "equal particles", dv, drho, vmax);
     EXPECT_LT(dv, 1e-9);

@@ -121,7 +121,8 @@ TEST(SphSolid, PlanarAluminiumImpactFollowsTheHugoniot) {
     tx += ts[i], fx += fronts[i], txx += ts[i] * ts[i], txf += ts[i] * fronts[i];
   const double us = (m * txf - tx * fx) / (m * txx - tx * tx);
   const double expected = c0 + s * up;
-  std::printf("planar Al impact at %.0f m/s: up = %.1f m/s (v/2 = %.0f), Us = %.0f m/s (Hugoniot %.0f, exact %.0f), %zu steps\n",
+  std::printf("planar Al impact at %.0f m/s: up = %.1f m/s (v/2 = %.0f), Us = %.0f m/s (Hugoniot "
+              "%.0f, exact %.0f), %zu steps\n",
               v, up, 0.5 * v, us, expected, hugoniotShockSpeed(eos, rho0, up), solver.steps());
   EXPECT_NEAR(up, 0.5 * v, 0.03 * 0.5 * v);
   EXPECT_NEAR(us, expected, 0.05 * expected);
@@ -149,7 +150,8 @@ TEST(SphSolid, JaumannRateRotatesStressWithTheBody) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k) {
-        const double x[3] = {(i - 0.5 * (n - 1)) * dx, (j - 0.5 * (n - 1)) * dx, (k - 0.5 * (n - 1)) * dx};
+        const double x[3] = {(i - 0.5 * (n - 1)) * dx, (j - 0.5 * (n - 1)) * dx,
+                             (k - 0.5 * (n - 1)) * dx};
         const double v[3] = {-w * x[1], w * x[0], 0.0};
         s.add(x, v, rho0 * dx * dx * dx, rho0, 0.0, 0);
         s.S[s.S.size() - 6] = a;  // S_xx
@@ -161,8 +163,9 @@ TEST(SphSolid, JaumannRateRotatesStressWithTheBody) {
   const double theta = 0.02; // rad; the release wave needs 10 dx / 6.4 km/s = 1.6 µs to arrive
   solver.advanceTo(theta / w);
   const double* S = &solver.state().S[6 * centre];
-  std::printf("Jaumann: after %.3f rad S_xy = %.4g Pa, S_xx = %.4g Pa (rigid rotation: %.4g, %.4g)\n", theta, S[3],
-              S[0], a * std::sin(2.0 * theta), a * std::cos(2.0 * theta));
+  std::printf(
+      "Jaumann: after %.3f rad S_xy = %.4g Pa, S_xx = %.4g Pa (rigid rotation: %.4g, %.4g)\n",
+      theta, S[3], S[0], a * std::sin(2.0 * theta), a * std::cos(2.0 * theta));
   EXPECT_NEAR(S[3], a * std::sin(2.0 * theta), 0.03 * a * std::sin(2.0 * theta));
   EXPECT_NEAR(S[0], a * std::cos(2.0 * theta), 0.01 * a);
   EXPECT_NEAR(S[0] + S[1] + S[2], 0.0, 1e-9 * a); // stays deviatoric
@@ -231,7 +234,8 @@ Collapse collapseColumn(double bulkModulus, double lateStageTime, double lateSou
       }
   SphSolver solver(s, par);
   if (lateStageTime >= 0.0) {
-    // Up to the switch, then one step of 1e-12 s: the switch scales the stress; the step barely moves it.
+    // Up to the switch, then one step of 1e-12 s: the switch scales the stress; the step barely
+    // moves it.
     solver.advanceTo(lateStageTime);
     EXPECT_FALSE(solver.lateStage());
     const double before = solver.stableStep();
@@ -263,7 +267,9 @@ Collapse collapseColumn(double bulkModulus, double lateStageTime, double lateSou
     const int b = static_cast<int>(std::abs(st.x[3 * i]) / dx);
     if (b < half)
       top[b] = std::max(top[b], st.x[3 * i + 2] + 0.5 * dx);
-    ke += 0.5 * st.mass[i] * (st.v[3 * i] * st.v[3 * i] + st.v[3 * i + 1] * st.v[3 * i + 1] + st.v[3 * i + 2] * st.v[3 * i + 2]);
+    ke += 0.5 * st.mass[i] *
+          (st.v[3 * i] * st.v[3 * i] + st.v[3 * i + 1] * st.v[3 * i + 1] +
+           st.v[3 * i + 2] * st.v[3 * i + 2]);
   }
   const double peak = *std::max_element(top.begin(), top.end());
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
@@ -285,9 +291,11 @@ Collapse collapseColumn(double bulkModulus, double lateStageTime, double lateSou
   for (int b = 0; b < half; ++b)
     if (top[b] > 0.0)
       runout = b + 1;
-  std::printf("column collapse (H = L0, phi = 30 deg, K = %.3g Pa%s): deposit height %.3f m, runout %.3f m, "
+  std::printf("column collapse (H = L0, phi = 30 deg, K = %.3g Pa%s): deposit height %.3f m, "
+              "runout %.3f m, "
               "flank angle %.1f deg, kinetic energy left %.2e J, %zu steps\n",
-              bulkModulus, lateStageTime >= 0.0 ? ", late stage" : "", peak, runout * dx, out.angle, ke, out.steps);
+              bulkModulus, lateStageTime >= 0.0 ? ", late stage" : "", peak, runout * dx, out.angle,
+              ke, out.steps);
   return out;
 }
 
@@ -308,8 +316,8 @@ TEST(SphSolid, LateStageSchemeKeepsTheGranularFlowWithLongSteps) {
   const double K = 4e9, c = 20.0, rho0 = 1500.0;
   double stepRatio = 0.0, stressRatio = 0.0;
   const Collapse late = collapseColumn(K, 5e-4, c, &stepRatio, &stressRatio);
-  std::printf("late stage: stable step x %.1f at the switch, stress x %.4g (expected %.4g)\n", stepRatio, stressRatio,
-              rho0 * c * c / K);
+  std::printf("late stage: stable step x %.1f at the switch, stress x %.4g (expected %.4g)\n",
+              stepRatio, stressRatio, rho0 * c * c / K);
   EXPECT_NEAR(stressRatio, rho0 * c * c / K, 1e-4 * rho0 * c * c / K);
   EXPECT_GT(stepRatio, 0.3 * std::sqrt(K / rho0) / c); // the Courant limit follows the sound speed
   EXPECT_LT(late.steps, 20000u);
@@ -324,7 +332,8 @@ TEST(SphSolid, LateStageSchemeKeepsTheGranularFlowWithLongSteps) {
 // the floor it falls to 0.055 rho_b here). The particles fly on unchanged.
 TEST(SphSolid, DilatedRegolithIsHeldAtTheDensityFloor) {
   const Material reg = libraryMaterial("regolith");
-  const double rhoB = reg.eos.tillotson.rho0 / reg.distention, dx = 0.01, A = 1000.0, m = rhoB * dx * dx * dx;
+  const double rhoB = reg.eos.tillotson.rho0 / reg.distention, dx = 0.01, A = 1000.0,
+               m = rhoB * dx * dx * dx;
   SphParams par;
   par.materials = {reg};
   SphState s;
@@ -332,7 +341,8 @@ TEST(SphSolid, DilatedRegolithIsHeldAtTheDensityFloor) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k) {
-        const double x[3] = {(i - 0.5 * (n - 1)) * dx, (j - 0.5 * (n - 1)) * dx, (k - 0.5 * (n - 1)) * dx};
+        const double x[3] = {(i - 0.5 * (n - 1)) * dx, (j - 0.5 * (n - 1)) * dx,
+                             (k - 0.5 * (n - 1)) * dx};
         const double v[3] = {A * x[0], A * x[1], A * x[2]};
         s.add(x, v, m, rhoB, 0.0, 0);
         s.alpha.back() = reg.distention; // porous, at its initial distention
@@ -357,7 +367,8 @@ TEST(SphSolid, DilatedRegolithIsHeldAtTheDensityFloor) {
     for (int k = 0; k < 3; ++k)
       dv = std::max(dv, std::abs(end.v[3 * i + k] - start.v[3 * i + k]));
   }
-  std::printf("centre at (1 + At)^3 = 3.375: rho / rho_b %.4f (continuity %.4f); at 27: lowest %.4f, %zu of %zu at "
+  std::printf("centre at (1 + At)^3 = 3.375: rho / rho_b %.4f (continuity %.4f); at 27: lowest "
+              "%.4f, %zu of %zu at "
               "the floor; largest velocity change %.3g m/s\n",
               mid, 1.0 / 3.375, lowest, atFloor, end.size(), dv);
   EXPECT_NEAR(mid, 1.0 / 3.375, 0.05 / 3.375);
@@ -402,15 +413,18 @@ TEST(SphSolid, ElasticSpheresCollideAndRebound) {
     const double m = st.mass[i];
     (i < half ? vl : vr) += m * st.v[3 * i];
     (i < half ? ml : mr) += m;
-    vmax = std::max(vmax, std::sqrt(st.v[3 * i] * st.v[3 * i] + st.v[3 * i + 1] * st.v[3 * i + 1] + st.v[3 * i + 2] * st.v[3 * i + 2]));
+    vmax = std::max(vmax, std::sqrt(st.v[3 * i] * st.v[3 * i] + st.v[3 * i + 1] * st.v[3 * i + 1] +
+                                    st.v[3 * i + 2] * st.v[3 * i + 2]));
   }
   vl /= ml, vr /= mr;
   const double restitution = (vr - vl) / (2.0 * v);
   double P[3];
   solver.totalMomentum(P);
-  std::printf("elastic spheres at 2 x %.0f m/s: after %.0f us left %.2f m/s, right %.2f m/s, restitution %.2f, "
+  std::printf("elastic spheres at 2 x %.0f m/s: after %.0f us left %.2f m/s, right %.2f m/s, "
+              "restitution %.2f, "
               "fastest particle %.1f m/s, energy change %.2e, %zu steps\n",
-              v, tEnd * 1e6, vl, vr, restitution, vmax, (solver.totalEnergy() - E0) / E0, solver.steps());
+              v, tEnd * 1e6, vl, vr, restitution, vmax, (solver.totalEnergy() - E0) / E0,
+              solver.steps());
   EXPECT_LT(vl, 0.0);
   EXPECT_GT(vr, 0.0);
   EXPECT_GT(restitution, 0.3);
@@ -453,9 +467,10 @@ TEST(SphSolid, GradyKippDamageGrowsInTensionOnly) {
     return std::make_pair(mean / static_cast<double>(solver.state().size()), most);
   };
   const auto pulled = run(2e3, true), squeezed = run(-2e3, true), flawless = run(2e3, false);
-  std::printf("Grady-Kipp: expanding basalt sphere mean damage %.3f (max %.3f); compressed max %.3g; "
-              "without flaws max %.3g\n",
-              pulled.first, pulled.second, squeezed.second, flawless.second);
+  std::printf(
+      "Grady-Kipp: expanding basalt sphere mean damage %.3f (max %.3f); compressed max %.3g; "
+      "without flaws max %.3g\n",
+      pulled.first, pulled.second, squeezed.second, flawless.second);
   EXPECT_GT(pulled.first, 0.5);
   EXPECT_EQ(squeezed.second, 0.0);
   EXPECT_EQ(flawless.second, 0.0);
