@@ -1,5 +1,6 @@
 #include "vtkCraterKitDEMIntegrator.h"
 
+#include "CraterKitEnumTables.h"
 #include "vtkCraterKitSolverBridge.h"
 
 #include "dem/DemRun.h"
@@ -67,7 +68,7 @@ void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input) {
 
   DemParams p;
   ContactParams& c = p.contact;
-  c.normalModel = this->ContactLaw == HERTZ ? "Hertz" : "LinearSpringDashpot";
+  c.normalModel = std::string(enums::kContactLaw.toSolver(this->ContactLaw));
   c.kT = this->TangentialStiffness;
   c.restitutionN = this->NormalRestitution;
   c.restitutionT = this->TangentialRestitution;
@@ -81,7 +82,7 @@ void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input) {
   p.overlapWarning = this->MaxOverlap;
 
   Gravity& g = p.gravity;
-  g.type = static_cast<Gravity::Type>(this->GravityModel);
+  g.type = enums::kGravityModel.toSolver(this->GravityModel);
   std::copy(this->SurfaceGravity, this->SurfaceGravity + 3, g.vector.begin());
   g.GM = this->PointMassGM;
   std::copy(this->PointMassCentre, this->PointMassCentre + 3, g.centre.begin());
@@ -108,8 +109,9 @@ void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input) {
   }
 
   craterkit::Container container;
-  switch (this->Container) {
-  case FROM_INPUT: {
+  const enums::DemContainer walls = enums::kDemContainer.toSolver(this->Container);
+  switch (walls) {
+  case enums::DemContainer::FromInput: {
     const std::string type = bridge::fieldString(fd, "ContainerType");
     if (type == "Box" || type == "Bowl") {
       container.type =
@@ -123,15 +125,15 @@ void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input) {
     }
     break;
   }
-  case BOX:
-  case BOWL:
-    container.type =
-        this->Container == BOX ? craterkit::Container::Type::Box : craterkit::Container::Type::Bowl;
+  case enums::DemContainer::Box:
+  case enums::DemContainer::Bowl:
+    container.type = walls == enums::DemContainer::Box ? craterkit::Container::Type::Box
+                                                       : craterkit::Container::Type::Bowl;
     container.bowlRadius = this->ContainerRadius;
     container.boxSize = {this->BoxSize[0], this->BoxSize[1], this->BoxSize[2]};
     p.walls = containerWalls(container);
     break;
-  case CYLINDER:
+  case enums::DemContainer::Cylinder:
     p.walls.push_back(Wall::cylinder({0, 0, 0}, {0, 0, 1}, this->ContainerRadius));
     p.walls.push_back(Wall::plane({0, 0, -this->BoxSize[2]}, {0, 0, 1}));
     break;

@@ -1,5 +1,6 @@
 #include "vtkCraterKitGranularBed.h"
 
+#include "CraterKitEnumTables.h"
 #include "vtkCraterKitSolverBridge.h"
 
 #include "bed/GranularBed.h"
@@ -18,13 +19,12 @@ int vtkCraterKitGranularBed::RequestData(vtkInformation*, vtkInformationVector**
   using namespace craterkit;
 
   GranularBedParams p;
-  p.packing =
-      this->Packing == HCP ? GranularBedParams::Packing::HCP : GranularBedParams::Packing::RCP;
-  p.container.type = this->Container == BOX ? Container::Type::Box : Container::Type::Bowl;
+  p.packing = enums::kPacking.toSolver(this->Packing);
+  p.container.type = enums::kBedContainer.toSolver(this->Container);
   p.container.bowlRadius = this->ContainerRadius;
   p.container.boxSize = {this->BoxSize[0], this->BoxSize[1], this->BoxSize[2]};
   p.container.surfaceHeight = this->SurfaceHeight;
-  p.sizes.type = static_cast<SizeDistribution::Type>(this->SizeDistribution);
+  p.sizes.type = enums::kSizeDistribution.toSolver(this->SizeDistribution);
   p.sizes.radius = this->ParticleRadius;
   p.sizes.minRadius = this->MinRadius;
   p.sizes.maxRadius = this->MaxRadius;

@@ -1,7 +1,9 @@
 #include "vtkCraterKitHardDiskCrater.h"
 
+#include "CraterKitEnumTables.h"
 #include "vtkCraterKitSolverBridge.h"
 
+#include "analysis/CraterProfile.h"
 #include "edmd/HardDiskCrater.h"
 
 #include <vtkCellArray.h>
@@ -35,33 +37,12 @@ using craterkit::HardDiskCraterParams;
 
 // Model coordinates (x, y up) to the output's x-z plane.
 void AddPoint(vtkPoints* points, double x, double y) { points->InsertNextPoint(x, 0.0, y); }
-
-vtkSmartPointer<vtkIntArray> IntArray(const char* name, vtkIdType n) {
-  auto a = vtkSmartPointer<vtkIntArray>::New();
-  a->SetName(name);
-  a->SetNumberOfTuples(n);
-  return a;
-}
-
-vtkSmartPointer<vtkDoubleArray> DoubleArray(const char* name, int components, vtkIdType n) {
-  auto a = vtkSmartPointer<vtkDoubleArray>::New();
-  a->SetName(name);
-  a->SetNumberOfComponents(components);
-  a->SetNumberOfTuples(n);
-  return a;
-}
 } // namespace
 
 int vtkCraterKitHardDiskCrater::RequestInformation(vtkInformation*, vtkInformationVector**,
                                                    vtkInformationVector* outputVector) {
-  std::vector<double> times{0.0};
-  if (this->FrameInterval > 0.0 && this->EndTime > 0.0 &&
-      std::isfinite(this->EndTime / this->FrameInterval)) {
-    const long frames =
-        static_cast<long>(std::floor(this->EndTime / this->FrameInterval * (1.0 + 1e-12)));
-    for (long k = 1; k <= std::min(frames, 100000L); ++k)
-      times.push_back(k * this->FrameInterval);
-  }
+  const std::vector<double> times =
+      craterkit::hardDiskFrameTimes(this->FrameInterval, this->EndTime);
   const double range[2] = {times.front(), times.back()};
   for (int port = 0; port < 3; ++port) {
     vtkInformation* outInfo = outputVector->GetInformationObject(port);
@@ -82,8 +63,9 @@ int vtkCraterKitHardDiskCrater::RequestData(vtkInformation*, vtkInformationVecto
 
   HardDiskCraterParams p;
   const bool ok = bridge::run(this, [&] {
-    if (this->Preset != CUSTOM)
-      p = HardDiskCraterParams::preset(HardDiskCraterParams::presetNames()[this->Preset - 1]);
+    const std::string_view preset = enums::kHardDiskPreset.toSolver(this->Preset);
+    if (!preset.empty())
+      p = HardDiskCraterParams::preset(std::string(preset));
     else {
       p.width = this->Width;
       p.groundDepth = this->GroundDepth;
@@ -92,8 +74,7 @@ int vtkCraterKitHardDiskCrater::RequestData(vtkInformation*, vtkInformationVecto
       p.maxDiskRadius = this->MaxDiskRadius;
       p.areaFraction = this->AreaFraction;
       p.groundDensity = this->GroundDensity;
-      p.impactor = this->ImpactorType == CLUMP ? HardDiskCraterParams::Impactor::Clump
-                                               : HardDiskCraterParams::Impactor::Disk;
+      p.impactor = enums::kImpactorType.toSolver(this->ImpactorType);
       p.impactorRadius = this->ImpactorRadius;
       p.densityRatio = this->DensityRatio;
       p.impactSpeed = this->ImpactSpeed;
@@ -126,48 +107,31 @@ int vtkCraterKitHardDiskCrater::RequestData(vtkInformation*, vtkInformationVecto
 
   const HardDiskCraterRun& run = *this->Run;
   const HardDisks& d = run.system().disks();
-  const vtkIdType n = static_cast<vtkIdType>(d.size());
   const double frameTime = run.frameTime(run.currentFrame());
 
-  // Output 0: disks.
+  // Output 0: disks (the model's x, y up in the output's x-z plane).
   vtkPolyData* disks = vtkPolyData::GetData(outputVector, 0);
   {
-    auto points = vtkSmartPointer<vtkPoints>::New();
-    points->SetDataTypeToDouble();
-    points->Allocate(n);
-    auto verts = vtkSmartPointer<vtkCellArray>::New();
-    verts->AllocateExact(n, n);
-    auto velocity = DoubleArray("Velocity", 3, n);
-    auto radius = DoubleArray("Radius", 1, n);
-    auto mass = DoubleArray("Mass", 1, n);
-    auto density = DoubleArray("Density", 1, n);
-    auto material = IntArray("Material", n);
-    auto tracer = IntArray("IsTracer", n);
-    auto disturbed = IntArray("Disturbed", n);
-    auto ids = vtkSmartPointer<vtkTypeInt64Array>::New();
-    ids->SetName("Id");
-    ids->SetNumberOfTuples(n);
-    tracer->FillValue(0);
-    for (std::uint32_t k : run.tracers())
-      tracer->SetValue(k, 1);
-    for (vtkIdType i = 0; i < n; ++i) {
-      AddPoint(points, d.x[i], d.y[i]);
-      verts->InsertNextCell(1, &i);
-      const double v[3] = {d.vx[i], 0.0, d.vy[i]};
-      velocity->SetTuple(i, v);
-      radius->SetValue(i, d.radius[i]);
-      mass->SetValue(i, d.mass[i]);
-      density->SetValue(i, d.mass[i] / (M_PI * d.radius[i] * d.radius[i]));
-      material->SetValue(i, d.material[i]);
-      disturbed->SetValue(i, run.system().disturbed()[i]);
-      ids->SetValue(i, d.id[i]);
+    std::vector<double> xyz(3 * d.size()), velocity(3 * d.size()), density(d.size());
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      xyz[3 * i] = d.x[i], xyz[3 * i + 1] = 0.0, xyz[3 * i + 2] = d.y[i];
+      velocity[3 * i] = d.vx[i], velocity[3 * i + 1] = 0.0, velocity[3 * i + 2] = d.vy[i];
+      density[i] = d.mass[i] / (M_PI * d.radius[i] * d.radius[i]);
     }
-    disks->SetPoints(points);
-    disks->SetVerts(verts);
+    std::vector<int> tracer(d.size(), 0);
+    for (std::uint32_t k : run.tracers())
+      tracer[k] = 1;
+    const std::vector<char>& touched = run.system().disturbed();
+    bridge::setVertices(disks, xyz);
     vtkPointData* pd = disks->GetPointData();
-    for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{
-             velocity, radius, mass, density, material, tracer, disturbed, ids})
-      pd->AddArray(a);
+    pd->AddArray(bridge::doubleArray("Velocity", 3, velocity));
+    pd->AddArray(bridge::doubleArray("Radius", 1, d.radius));
+    pd->AddArray(bridge::doubleArray("Mass", 1, d.mass));
+    pd->AddArray(bridge::doubleArray("Density", 1, density));
+    pd->AddArray(bridge::intArray("Material", d.material));
+    pd->AddArray(bridge::intArray("IsTracer", tracer));
+    pd->AddArray(bridge::intArray("Disturbed", std::vector<int>(touched.begin(), touched.end())));
+    pd->AddArray(bridge::idArray("Id", d.id));
     pd->SetActiveScalars("Radius");
   }
 
@@ -214,32 +178,17 @@ int vtkCraterKitHardDiskCrater::RequestData(vtkInformation*, vtkInformationVecto
     }
     outline->SetPoints(points);
     outline->SetLines(lines);
-    // Depth below the original surface; width: the run of bins around the impact point
-    // whose top is more than one disk diameter below the original surface.
-    const std::size_t centre =
-        std::min(top.size() - 1, static_cast<std::size_t>(run.impactX() / bin));
-    const double surface = run.surfaceLevel(), drop = 2.0 * run.params().diskRadius;
-    depth = std::max(0.0, surface - *std::min_element(top.begin(), top.end()));
-    std::size_t lo = centre, hi = centre;
-    if (top[centre] < surface - drop) {
-      while (lo > 0 && top[lo - 1] < surface - drop)
-        --lo;
-      while (hi + 1 < top.size() && top[hi + 1] < surface - drop)
-        ++hi;
-      width = (hi - lo + 1) * bin;
-    }
+    // The crater: more than one disk diameter below the original surface.
+    const SectionCrater crater =
+        measureSection(top, bin, run.impactX(), run.surfaceLevel(), 2.0 * run.params().diskRadius);
+    depth = crater.depth;
+    width = crater.width;
   }
 
   // Field data shared by the three outputs.
   auto fd = vtkSmartPointer<vtkFieldData>::New();
   const std::vector<HardDiskCraterRun::Ejection> ejections = run.ejections();
-  double meanAngle = std::nan("");
-  if (!ejections.empty()) {
-    meanAngle = 0.0;
-    for (const auto& e : ejections)
-      meanAngle += e.angleDeg;
-    meanAngle /= ejections.size();
-  }
+  const double meanAngle = HardDiskCraterRun::meanEjectionAngle(ejections);
   double px, py;
   run.system().momentum(px, py);
   const double momentum[3] = {px, 0.0, py};

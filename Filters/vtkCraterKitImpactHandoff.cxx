@@ -1,5 +1,6 @@
 #include "vtkCraterKitImpactHandoff.h"
 
+#include "CraterKitEnumTables.h"
 #include "vtkCraterKitSolverBridge.h"
 
 #include "handoff/Handoff.h"
@@ -111,9 +112,9 @@ int vtkCraterKitImpactHandoff::RequestData(vtkInformation*, vtkInformationVector
     p.ejectaDensity = this->EjectaDensity;
     // Dropped ejecta leave only the curtain to become particles; it lands on the bed, so it
     // comes as grains of the bed's size (SPH-particle-sized ones would set the DEM step).
-    p.groupEjecta =
-        this->EjectaParticles == GROUPED_TO_BED_SIZE || this->EjectaParticles == DROPPED;
-    p.dropEjecta = this->EjectaParticles == DROPPED;
+    const enums::EjectaHandling ejecta = enums::kEjectaParticles.toSolver(this->EjectaParticles);
+    p.groupEjecta = ejecta.group;
+    p.dropEjecta = ejecta.drop;
     p.curtainAsParticles = this->CurtainAsParticles != 0;
     // Ejecta stay inside the bed's container (GranularBed's field data); with
     // DropEjectaLandingOutside, what comes down outside its footprint leaves the domain.

@@ -1,5 +1,6 @@
 #include "vtkCraterKitSPHImpact.h"
 
+#include "CraterKitEnumTables.h"
 #include "vtkCraterKitSolverBridge.h"
 
 #include "sph/ImpactSetup.h"
@@ -58,8 +59,7 @@ void vtkCraterKitSPHImpact::BuildRun() {
   setup.impactSpeed = this->ImpactSpeed;
   setup.impactAngle = this->ImpactAngle;
   setup.targetMaterial = this->TargetMaterial;
-  setup.targetShape = this->TargetShape == HALF_SPACE ? SphImpactSetup::Shape::HalfSpace
-                                                      : SphImpactSetup::Shape::Hemisphere;
+  setup.targetShape = enums::kTargetShape.toSolver(this->TargetShape);
   setup.targetRadius = this->TargetRadius;
   setup.coarsening = this->TargetCoarsening;
   setup.targetPorosity = this->TargetPorosity;
@@ -70,8 +70,7 @@ void vtkCraterKitSPHImpact::BuildRun() {
   setup.container = this->TargetContainer;
   SphImpactProblem problem = buildImpact(setup);
   SphParams& p = problem.params;
-  p.kernel =
-      this->Kernel == WENDLAND_C2 ? SphParams::Kernel::WendlandC2 : SphParams::Kernel::CubicSpline;
+  p.kernel = enums::kKernel.toSolver(this->Kernel);
   p.alpha = this->ArtificialViscosityAlpha;
   p.beta = this->ArtificialViscosityBeta;
   p.xsph = this->XSPH;
@@ -172,8 +171,7 @@ int vtkCraterKitSPHImpact::RequestData(vtkInformation*, vtkInformationVector**,
   b::addField(fd, "TargetCoarsening", this->TargetCoarsening);
   b::addField(fd, "TargetContainer", this->TargetContainer ? 1.0 : 0.0);
   b::addField(fd, "ContainerParticles", static_cast<double>(this->ContainerParticles));
-  b::addField(fd, "TargetShape",
-              std::string(this->TargetShape == HALF_SPACE ? "HalfSpace" : "Hemisphere"));
+  b::addField(fd, "TargetShape", std::string(enums::kTargetShape.text(this->TargetShape)));
   b::addField(fd, "ImpactSpeed", this->ImpactSpeed);
   b::addField(fd, "ImpactAngle", this->ImpactAngle);
   b::addField(fd, "ImpactorMaterial", this->ImpactorMaterial);

@@ -76,6 +76,24 @@ CraterMeasures measureProfile(const std::vector<double>& radius, const std::vect
   return m;
 }
 
+SectionCrater measureSection(const std::vector<double>& top, double bin, double impactX, double z0,
+                             double drop) {
+  SectionCrater m;
+  if (top.empty())
+    return m;
+  const std::size_t centre = std::min(top.size() - 1, static_cast<std::size_t>(impactX / bin));
+  m.depth = std::max(0.0, z0 - *std::min_element(top.begin(), top.end()));
+  std::size_t lo = centre, hi = centre;
+  if (top[centre] < z0 - drop) {
+    while (lo > 0 && top[lo - 1] < z0 - drop)
+      --lo;
+    while (hi + 1 < top.size() && top[hi + 1] < z0 - drop)
+      ++hi;
+    m.width = (hi - lo + 1) * bin;
+  }
+  return m;
+}
+
 CraterProfileResult craterProfile(const std::vector<double>& positions,
                                   const std::vector<double>& radii,
                                   const CraterProfileParams& par) {

@@ -56,4 +56,16 @@ CraterProfileResult craterProfile(const std::vector<double>& positions,
 CraterMeasures measureProfile(const std::vector<double>& radius, const std::vector<double>& height,
                               double z0, double tolerance = 0.0);
 
+// A crater in a vertical 2D section (the hard-disk model's ground, PHYSICS.md §4.3): the
+// surface's top in bins of width `bin` along x (bin b centred at (b + 0.5) bin), measured
+// against the original surface z0 around the impact point impactX:
+//   - depth: z0 minus the lowest top (0 when no top is below z0);
+//   - width: the run of bins around the impact point whose top is more than `drop` below z0
+//     (0 when the impact point's bin is not).
+struct SectionCrater {
+  double depth = 0.0, width = 0.0;
+};
+SectionCrater measureSection(const std::vector<double>& top, double bin, double impactX, double z0,
+                             double drop);
+
 } // namespace craterkit

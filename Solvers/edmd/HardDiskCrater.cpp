@@ -296,6 +296,26 @@ std::vector<HardDiskCraterRun::Ejection> HardDiskCraterRun::ejections() const {
   return out;
 }
 
+double HardDiskCraterRun::meanEjectionAngle(const std::vector<Ejection>& ejections) {
+  if (ejections.empty())
+    return std::nan("");
+  double mean = 0.0;
+  for (const auto& e : ejections)
+    mean += e.angleDeg;
+  mean /= ejections.size();
+  return mean;
+}
+
+std::vector<double> hardDiskFrameTimes(double frameInterval, double endTime) {
+  std::vector<double> times{0.0};
+  if (frameInterval > 0.0 && endTime > 0.0 && std::isfinite(endTime / frameInterval)) {
+    const long frames = static_cast<long>(std::floor(endTime / frameInterval * (1.0 + 1e-12)));
+    for (long k = 1; k <= std::min(frames, 100000L); ++k)
+      times.push_back(k * frameInterval);
+  }
+  return times;
+}
+
 std::vector<double> HardDiskCraterRun::surfaceProfile(double bin) const {
   if (!(bin > 0.0))
     throw InputError("the profile bin width must be positive");

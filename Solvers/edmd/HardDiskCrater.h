@@ -46,6 +46,10 @@ struct HardDiskCraterParams {
   static std::vector<std::string> presetNames();
 };
 
+// The frame times a run with this frame interval and end time shows: 0, then every interval up
+// to the end (at most 100000 frames); only 0 when either is not positive.
+std::vector<double> hardDiskFrameTimes(double frameInterval, double endTime);
+
 enum HardDiskMaterial { kGround = 0, kImpactor = 1 };
 
 // Random ground at the requested area fraction: random sequential addition up to 0.40,
@@ -79,6 +83,8 @@ public:
     double time;
   };
   std::vector<Ejection> ejections() const;
+  // The mean launch angle of these ejections, NaN when there are none.
+  static double meanEjectionAngle(const std::vector<Ejection>& ejections);
   double impactX() const { return 0.5 * p_.width; }
   double surfaceLevel() const { return p_.groundDepth; }
 

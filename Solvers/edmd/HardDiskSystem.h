@@ -157,7 +157,7 @@ private:
   void removeFromCell(std::size_t i);
   void schedule(std::size_t i, const Event& e) { queue_.update(i, e); }
   void predictAll();
-  double exitTime(double pos, double vel, double acc, double lo, double hi, int& side) const;
+  void setUpGrid(double rmin, double rmax); // sizes the cells and lists the disks
 
   // What the event loop touches for a disk, in one cache line.
   struct Hot {

@@ -130,3 +130,14 @@ TEST(CraterProfile, RimIsTheCrestNextToTheCraterNotTheHighestGround) {
   EXPECT_LE(c.rimDiameter, 8.0);
   EXPECT_LT(c.rimHeight, 0.011); // the bumps', not the step at r = 5
 }
+
+TEST(CraterProfile, SectionCraterIsTheRunOfBinsBelowTheSurfaceAroundTheImpact) {
+  // Bins of 1 m; the impact at x = 3.5 (bin 3); bins more than 0.3 m below z0 = 1 count.
+  const std::vector<double> top{1.0, 0.8, 0.5, 0.2, 0.5, 1.0, 0.6};
+  const SectionCrater c = measureSection(top, 1.0, 3.5, 1.0, 0.3);
+  EXPECT_DOUBLE_EQ(c.depth, 0.8);
+  EXPECT_DOUBLE_EQ(c.width, 3.0); // bins 2-4; bin 6 is below too but not connected
+  const SectionCrater flat = measureSection(std::vector<double>(5, 1.0), 1.0, 2.5, 1.0, 0.3);
+  EXPECT_EQ(flat.depth, 0.0);
+  EXPECT_EQ(flat.width, 0.0);
+}
