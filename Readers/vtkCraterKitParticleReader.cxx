@@ -3,7 +3,9 @@
 #include "vtkCraterKitSolverBridge.h"
 
 #include "dem/DemSolver.h"
-#include "io/ParticleFiles.h"
+#include "io/FileBytes.h"
+#include "io/LammpsDump.h"
+#include "io/PkdgravSs.h"
 #include "sph/SphRun.h"
 
 #include <vtkInformation.h>

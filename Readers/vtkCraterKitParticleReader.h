@@ -6,8 +6,9 @@
  * (`.dump`, `.liggghts`, `.lammpstrj`, and the same gzip-compressed, `.gz`), pkdgrav `.ss`
  * (XDR), and CraterKit's DEM checkpoints (`.ckdem`). A dump holding several snapshots
  * advertises each as a time step (its ITEM: TIME, else its step number); ParaView's file
- * series reader turns numbered files into time steps. Parsing lives in
- * Solvers/io/ParticleFiles.h; bad files give an error naming the file and the line or byte.
+ * series reader turns numbered files into time steps. Parsing lives in Solvers/io/
+ * (LammpsDump.h, PkdgravSs.h, FileBytes.h); bad files give an error naming the file and the
+ * line or byte.
  *
  * Output: one vertex per particle with the point arrays of ARCHITECTURE.md that the file
  * holds (Velocity, AngularVelocity, Radius, Mass, Density, Material = LAMMPS type - 1, Id)

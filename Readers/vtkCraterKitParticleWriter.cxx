@@ -2,7 +2,9 @@
 
 #include "vtkCraterKitSolverBridge.h"
 
-#include "io/ParticleFiles.h"
+#include "common/AtomicWrite.h"
+#include "io/LammpsDump.h"
+#include "io/PkdgravSs.h"
 
 #include <vtkDataArray.h>
 #include <vtkInformation.h>
@@ -10,7 +12,7 @@
 #include <vtkPolyData.h>
 
 #include <cctype>
-#include <fstream>
+#include <ostream>
 #include <set>
 
 vtkStandardNewMacro(vtkCraterKitParticleWriter);
@@ -60,15 +62,9 @@ void vtkCraterKitParticleWriter::WriteData() {
     const bool ss = lower.size() >= 3 && lower.compare(lower.size() - 3, 3, ".ss") == 0;
     const std::string bytes = ss ? writeSs(frame, this->PkdgravUnits != 0) : writeDump(frame);
     // Write beside, then rename: a failed write never leaves half a file under the name.
-    const std::string partial = name + ".partial";
-    {
-      std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-      if (!out || !out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())) ||
-          !out.flush())
-        throw InputError(name + ": cannot write the file");
-    }
-    if (std::rename(partial.c_str(), name.c_str()) != 0)
-      throw InputError(name + ": cannot replace the file");
+    writeFileAtomically(name, ss ? "the .ss file" : "the dump", [&](std::ostream& out) {
+      out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    });
   });
   if (!ok)
     this->SetErrorCode(1);

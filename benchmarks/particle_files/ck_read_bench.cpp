@@ -5,7 +5,9 @@
 // reading (a memory map, as the reader does) + parse for each. Prints MB/s and the ratio. See
 // benchmarks/README.md.
 #include "common/Random.h"
-#include "io/ParticleFiles.h"
+#include "io/FileBytes.h"
+#include "io/LammpsDump.h"
+#include "io/PkdgravSs.h"
 
 #include <charconv>
 #include <chrono>

@@ -1,6 +1,6 @@
 // libFuzzer target: LAMMPS/LIGGGHTS dump parsing. Any input must give a frame or a
 // ParseError, never a crash, a hang or a huge allocation.
-#include "io/ParticleFiles.h"
+#include "io/LammpsDump.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 // libFuzzer target: gzip decompression of dumps (output capped at 1032x the input).
-#include "io/ParticleFiles.h"
+#include "io/FileBytes.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 // libFuzzer target: pkdgrav .ss parsing (and writing back what was read).
-#include "io/ParticleFiles.h"
+#include "io/PkdgravSs.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,6 +1,8 @@
 // Particle file formats: round trips, files written by LAMMPS itself, and malformed input.
-#include "io/ParticleFiles.h"
 #include "common/Random.h"
+#include "io/FileBytes.h"
+#include "io/LammpsDump.h"
+#include "io/PkdgravSs.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>

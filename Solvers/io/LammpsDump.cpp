@@ -1,26 +1,19 @@
-#include "io/ParticleFiles.h"
+#include "io/LammpsDump.h"
 
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-#include <zlib.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-
-#include <cerrno>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
+#include <tuple>
 
 namespace craterkit {
 
@@ -383,6 +376,173 @@ std::vector<DumpIndexEntry> indexDump(std::string_view text, const std::string& 
   return out;
 }
 
+namespace {
+// A snapshot's columns: what each one holds, which kinds are present, and where each extra
+// column goes (its array in the frame's extra arrays and its component there).
+struct DumpColumns {
+  std::vector<std::string> names;
+  std::vector<Col> kind;
+  bool has[static_cast<int>(Col::Extra) + 1] = {};
+  std::vector<int> extraIndex, extraComp;
+};
+
+// Classifies the ATOMS line's columns and checks them (no kind twice, x, y and z present, a
+// box for scaled coordinates); adds the frame's extra arrays (no values yet), grouped as
+// vectors when three consecutive names end in x, y, z. Errors name the header's line.
+DumpColumns classifyColumns(std::vector<std::string> names, ParticleFrame& f, const Cursor& c,
+                            std::size_t headerLine) {
+  DumpColumns cols;
+  cols.names = std::move(names);
+  const std::vector<std::string>& n = cols.names;
+  const std::size_t ncol = n.size();
+  std::vector<Col>& kind = cols.kind;
+  bool* const has = cols.has;
+  kind.resize(ncol);
+  for (std::size_t k = 0; k < ncol; ++k) {
+    kind[k] = columnKind(n[k]);
+    if (kind[k] != Col::Extra && has[static_cast<int>(kind[k])])
+      c.fail("column '" + n[k] + "' appears twice", headerLine);
+    has[static_cast<int>(kind[k])] = true;
+  }
+  const bool scaled = has[static_cast<int>(Col::Xs)] || has[static_cast<int>(Col::Ys)] ||
+                      has[static_cast<int>(Col::Zs)];
+  for (const auto& [a, b, name] :
+       {std::tuple{Col::X, Col::Xs, "x"}, std::tuple{Col::Y, Col::Ys, "y"},
+        std::tuple{Col::Z, Col::Zs, "z"}})
+    if (!has[static_cast<int>(a)] && !has[static_cast<int>(b)])
+      c.fail(std::string("the ATOMS line has no '") + name + "' column (x, xu or xs)", headerLine);
+  if (scaled && !f.hasBox)
+    c.fail("scaled coordinates without BOX BOUNDS", headerLine);
+
+  std::vector<int>& extraIndex = cols.extraIndex;
+  std::vector<int>& extraComp = cols.extraComp;
+  extraIndex.assign(ncol, -1);
+  extraComp.assign(ncol, 0);
+  for (std::size_t k = 0; k < ncol; ++k) {
+    if (kind[k] != Col::Extra || extraIndex[k] >= 0)
+      continue;
+    const std::string& a = n[k];
+    if (k + 2 < ncol && kind[k + 1] == Col::Extra && kind[k + 2] == Col::Extra && a.size() > 1 &&
+        a.back() == 'x' && n[k + 1] == a.substr(0, a.size() - 1) + "y" &&
+        n[k + 2] == a.substr(0, a.size() - 1) + "z") {
+      f.extra.push_back(ExtraArray{a.substr(0, a.size() - 1), 3, {}});
+      for (int j = 0; j < 3; ++j) {
+        extraIndex[k + j] = static_cast<int>(f.extra.size() - 1);
+        extraComp[k + j] = j;
+      }
+    } else {
+      f.extra.push_back(ExtraArray{a, 1, {}});
+      extraIndex[k] = static_cast<int>(f.extra.size() - 1);
+    }
+  }
+  return cols;
+}
+
+// Parses the atom lines in [p, end), rows first to last - 1, in place into the frame's arrays
+// (sized already). A bad row is reported through fail(row, message), and the next line read.
+template <class Fail> void parseDumpRows(const char* p, const char* const end, std::size_t first,
+                                         std::size_t last, const DumpColumns& cols,
+                                         ParticleFrame& f, Fail&& fail) {
+  const std::vector<std::string>& names = cols.names;
+  const std::vector<Col>& kind = cols.kind;
+  const std::vector<int>& extraIndex = cols.extraIndex;
+  const std::vector<int>& extraComp = cols.extraComp;
+  const std::size_t ncol = names.size();
+  ParticleSet& s = f.particles;
+  const bool anyExtra = !f.extra.empty();
+  for (std::size_t i = first; i < last; ++i) {
+    s.id[i] = static_cast<std::int64_t>(i + 1);
+    std::size_t k = 0;
+    for (; k < ncol; ++k) {
+      while (p < end && (*p == ' ' || *p == '\t'))
+        ++p;
+      if (p == end || *p == '\n' || *p == '\r')
+        break;
+      const char* const token = p;
+      const Col kk = kind[k];
+      if (kk == Col::Id || kk == Col::Type) {
+        long long v = 0;
+        const auto r = std::from_chars(p, end, v);
+        p = r.ptr;
+        if (r.ec != std::errc() || !endsToken(p, end)) {
+          fail(i, std::string("expected an integer for ") + names[k] + ", got '" +
+                      printable(tokenAt(token, end)) + "'");
+          break;
+        }
+        if (kk == Col::Id) {
+          s.id[i] = v;
+        } else if (v < 1 || v > std::numeric_limits<int>::max()) {
+          fail(i, "atom type " + std::to_string(v) + " out of range");
+          break;
+        } else {
+          s.material[i] = static_cast<int>(v - 1);
+        }
+        continue;
+      }
+      double v = 0.0;
+      const auto r = std::from_chars(p + (*p == '+'), end, v);
+      p = r.ptr;
+      if (r.ec != std::errc() || !endsToken(p, end)) {
+        // from_chars does not read every writer's spelling of inf and nan; accept LAMMPS's.
+        const std::string_view t = tokenAt(token, end);
+        if (!special(t, v)) {
+          fail(i,
+               std::string("expected a number for ") + names[k] + ", got '" + printable(t) + "'");
+          break;
+        }
+        p = token + t.size();
+      }
+      // One column kind a line.
+      // clang-format off
+      switch (kk) {
+      case Col::X: s.position[3 * i] = v; break;
+      case Col::Y: s.position[3 * i + 1] = v; break;
+      case Col::Z: s.position[3 * i + 2] = v; break;
+      case Col::Xs: s.position[3 * i] = f.box[0] + v * (f.box[1] - f.box[0]); break;
+      case Col::Ys: s.position[3 * i + 1] = f.box[2] + v * (f.box[3] - f.box[2]); break;
+      case Col::Zs: s.position[3 * i + 2] = f.box[4] + v * (f.box[5] - f.box[4]); break;
+      case Col::Vx: s.velocity[3 * i] = v; break;
+      case Col::Vy: s.velocity[3 * i + 1] = v; break;
+      case Col::Vz: s.velocity[3 * i + 2] = v; break;
+      case Col::Wx: s.angularVelocity[3 * i] = v; break;
+      case Col::Wy: s.angularVelocity[3 * i + 1] = v; break;
+      case Col::Wz: s.angularVelocity[3 * i + 2] = v; break;
+      case Col::Radius: s.radius[i] = v; break;
+      case Col::Diameter: s.radius[i] = 0.5 * v; break;
+      case Col::Mass: s.mass[i] = v; break;
+      case Col::Density: s.density[i] = v; break;
+      default:
+        if (anyExtra) {
+          ExtraArray& x = f.extra[static_cast<std::size_t>(extraIndex[k])];
+          x.values[i * x.components + extraComp[k]] = v;
+        }
+        break;
+      }
+      // clang-format on
+    }
+    // The rest of the line: blanks, then its end; more values are a count mismatch too.
+    if (k == ncol) {
+      while (p < end && (*p == ' ' || *p == '\t' || *p == '\r'))
+        ++p;
+      if (p < end && *p != '\n') {
+        const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
+        const std::string_view rest(
+            p, static_cast<std::size_t>((nl ? static_cast<const char*>(nl) : end) - p));
+        fail(i, "expected " + std::to_string(ncol) + " values, found " +
+                    std::to_string(ncol + split(rest, nullptr, 0)));
+      }
+    } else if (p == end || *p == '\n' || *p == '\r') {
+      fail(i, "expected " + std::to_string(ncol) + " values, found " + std::to_string(k));
+    } // else: the row's bad value was reported
+    if (p < end && *p != '\n') {
+      const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
+      p = nl ? static_cast<const char*>(nl) : end;
+    }
+    p += p < end; // past the '\n'
+  }
+}
+} // namespace
+
 ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& entry,
                                 const std::string& fileName) {
   if (entry.offset > text.size())
@@ -399,44 +559,8 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
     c.fail("NUMBER OF ATOMS " + std::to_string(e.count) +
                " exceeds what the rest of the file can hold",
            e.line);
-
-  std::vector<Col> kind(ncol);
-  bool has[static_cast<int>(Col::Extra) + 1] = {};
-  for (std::size_t k = 0; k < ncol; ++k) {
-    kind[k] = columnKind(names[k]);
-    if (kind[k] != Col::Extra && has[static_cast<int>(kind[k])])
-      c.fail("column '" + names[k] + "' appears twice", e.line);
-    has[static_cast<int>(kind[k])] = true;
-  }
-  const bool scaled = has[static_cast<int>(Col::Xs)] || has[static_cast<int>(Col::Ys)] ||
-                      has[static_cast<int>(Col::Zs)];
-  for (const auto& [a, b, name] :
-       {std::tuple{Col::X, Col::Xs, "x"}, std::tuple{Col::Y, Col::Ys, "y"},
-        std::tuple{Col::Z, Col::Zs, "z"}})
-    if (!has[static_cast<int>(a)] && !has[static_cast<int>(b)])
-      c.fail(std::string("the ATOMS line has no '") + name + "' column (x, xu or xs)", e.line);
-  if (scaled && !f.hasBox)
-    c.fail("scaled coordinates without BOX BOUNDS", e.line);
-
-  // Extra columns, grouped as vectors when three consecutive names end in x, y, z.
-  std::vector<int> extraIndex(ncol, -1), extraComp(ncol, 0);
-  for (std::size_t k = 0; k < ncol; ++k) {
-    if (kind[k] != Col::Extra || extraIndex[k] >= 0)
-      continue;
-    const std::string& a = names[k];
-    if (k + 2 < ncol && kind[k + 1] == Col::Extra && kind[k + 2] == Col::Extra && a.size() > 1 &&
-        a.back() == 'x' && names[k + 1] == a.substr(0, a.size() - 1) + "y" &&
-        names[k + 2] == a.substr(0, a.size() - 1) + "z") {
-      f.extra.push_back(ExtraArray{a.substr(0, a.size() - 1), 3, {}});
-      for (int j = 0; j < 3; ++j) {
-        extraIndex[k + j] = static_cast<int>(f.extra.size() - 1);
-        extraComp[k + j] = j;
-      }
-    } else {
-      f.extra.push_back(ExtraArray{a, 1, {}});
-      extraIndex[k] = static_cast<int>(f.extra.size() - 1);
-    }
-  }
+  const DumpColumns cols = classifyColumns(std::move(names), f, c, e.line);
+  const bool* const has = cols.has;
   for (ExtraArray& x : f.extra)
     x.values.assign(e.count * x.components, 0.0);
 
@@ -504,131 +628,9 @@ ParticleFrame parseDumpSnapshot(std::string_view text, const DumpIndexEntry& ent
     c.fail("the snapshot's atom lines end elsewhere than its index says; index the file again",
            e.line);
   }
-  const bool anyExtra = !f.extra.empty();
 #pragma omp parallel for schedule(static, 1) num_threads(pieces)
-  for (int t = 0; t < pieces; ++t) {
-    const char* p = base + cut[t];
-    const char* const end = base + cut[t + 1];
-    for (std::size_t i = firstRow[t]; i < firstRow[t + 1]; ++i) {
-      s.id[i] = static_cast<std::int64_t>(i + 1);
-      std::size_t k = 0;
-      for (; k < ncol; ++k) {
-        while (p < end && (*p == ' ' || *p == '\t'))
-          ++p;
-        if (p == end || *p == '\n' || *p == '\r')
-          break;
-        const char* const token = p;
-        const Col kk = kind[k];
-        if (kk == Col::Id || kk == Col::Type) {
-          long long v = 0;
-          const auto r = std::from_chars(p, end, v);
-          p = r.ptr;
-          if (r.ec != std::errc() || !endsToken(p, end)) {
-            fail(i, std::string("expected an integer for ") + names[k] + ", got '" +
-                        printable(tokenAt(token, end)) + "'");
-            break;
-          }
-          if (kk == Col::Id) {
-            s.id[i] = v;
-          } else if (v < 1 || v > std::numeric_limits<int>::max()) {
-            fail(i, "atom type " + std::to_string(v) + " out of range");
-            break;
-          } else {
-            s.material[i] = static_cast<int>(v - 1);
-          }
-          continue;
-        }
-        double v = 0.0;
-        const auto r = std::from_chars(p + (*p == '+'), end, v);
-        p = r.ptr;
-        if (r.ec != std::errc() || !endsToken(p, end)) {
-          // from_chars does not read every writer's spelling of inf and nan; accept LAMMPS's.
-          const std::string_view t = tokenAt(token, end);
-          if (!special(t, v)) {
-            fail(i,
-                 std::string("expected a number for ") + names[k] + ", got '" + printable(t) + "'");
-            break;
-          }
-          p = token + t.size();
-        }
-        switch (kk) {
-        case Col::X:
-          s.position[3 * i] = v;
-          break;
-        case Col::Y:
-          s.position[3 * i + 1] = v;
-          break;
-        case Col::Z:
-          s.position[3 * i + 2] = v;
-          break;
-        case Col::Xs:
-          s.position[3 * i] = f.box[0] + v * (f.box[1] - f.box[0]);
-          break;
-        case Col::Ys:
-          s.position[3 * i + 1] = f.box[2] + v * (f.box[3] - f.box[2]);
-          break;
-        case Col::Zs:
-          s.position[3 * i + 2] = f.box[4] + v * (f.box[5] - f.box[4]);
-          break;
-        case Col::Vx:
-          s.velocity[3 * i] = v;
-          break;
-        case Col::Vy:
-          s.velocity[3 * i + 1] = v;
-          break;
-        case Col::Vz:
-          s.velocity[3 * i + 2] = v;
-          break;
-        case Col::Wx:
-          s.angularVelocity[3 * i] = v;
-          break;
-        case Col::Wy:
-          s.angularVelocity[3 * i + 1] = v;
-          break;
-        case Col::Wz:
-          s.angularVelocity[3 * i + 2] = v;
-          break;
-        case Col::Radius:
-          s.radius[i] = v;
-          break;
-        case Col::Diameter:
-          s.radius[i] = 0.5 * v;
-          break;
-        case Col::Mass:
-          s.mass[i] = v;
-          break;
-        case Col::Density:
-          s.density[i] = v;
-          break;
-        default:
-          if (anyExtra) {
-            ExtraArray& x = f.extra[static_cast<std::size_t>(extraIndex[k])];
-            x.values[i * x.components + extraComp[k]] = v;
-          }
-          break;
-        }
-      }
-      // The rest of the line: blanks, then its end; more values are a count mismatch too.
-      if (k == ncol) {
-        while (p < end && (*p == ' ' || *p == '\t' || *p == '\r'))
-          ++p;
-        if (p < end && *p != '\n') {
-          const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
-          const std::string_view rest(
-              p, static_cast<std::size_t>((nl ? static_cast<const char*>(nl) : end) - p));
-          fail(i, "expected " + std::to_string(ncol) + " values, found " +
-                      std::to_string(ncol + split(rest, nullptr, 0)));
-        }
-      } else if (p == end || *p == '\n' || *p == '\r') {
-        fail(i, "expected " + std::to_string(ncol) + " values, found " + std::to_string(k));
-      } // else: the row's bad value was reported
-      if (p < end && *p != '\n') {
-        const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
-        p = nl ? static_cast<const char*>(nl) : end;
-      }
-      p += p < end; // past the '\n'
-    }
-  }
+  for (int t = 0; t < pieces; ++t)
+    parseDumpRows(base + cut[t], base + cut[t + 1], firstRow[t], firstRow[t + 1], cols, f, fail);
   if (badRow < n)
     throw ParseError(badMessage);
   f.hasVelocity = has[static_cast<int>(Col::Vx)] || has[static_cast<int>(Col::Vy)] ||
@@ -719,258 +721,6 @@ std::string writeDump(const ParticleFrame& frame) {
       }
     out += '\n';
   }
-  return out;
-}
-
-// ---- pkdgrav .ss --------------------------------------------------------------------------------
-
-double PkdgravUnits::time() {
-  constexpr double G = 6.67430e-11; // CODATA 2018
-  return std::sqrt(length * length * length / (G * mass));
-}
-
-namespace {
-static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
-              "the .ss byte swapping assumes a little-endian host");
-std::uint64_t loadBE64(const unsigned char* p) {
-  std::uint64_t v;
-  std::memcpy(&v, p, 8);
-  return __builtin_bswap64(v); // XDR is big-endian; the targets here are little-endian
-}
-std::uint32_t loadBE32(const unsigned char* p) {
-  std::uint32_t v;
-  std::memcpy(&v, p, 4);
-  return __builtin_bswap32(v);
-}
-double loadDouble(const unsigned char* p) {
-  const std::uint64_t bits = loadBE64(p);
-  double v;
-  std::memcpy(&v, &bits, 8);
-  return v;
-}
-std::int32_t loadInt(const unsigned char* p) {
-  const std::uint32_t u = loadBE32(p);
-  std::int32_t v;
-  std::memcpy(&v, &u, 4);
-  return v;
-}
-void storeDouble(std::string& out, double v) {
-  std::uint64_t bits;
-  std::memcpy(&bits, &v, 8);
-  for (int k = 7; k >= 0; --k)
-    out += static_cast<char>((bits >> (8 * k)) & 0xFF);
-}
-void storeInt(std::string& out, std::int32_t v) {
-  std::uint32_t u;
-  std::memcpy(&u, &v, 4);
-  for (int k = 3; k >= 0; --k)
-    out += static_cast<char>((u >> (8 * k)) & 0xFF);
-}
-std::int32_t byteSwapped(std::int32_t v) {
-  std::uint32_t u;
-  std::memcpy(&u, &v, 4);
-  u = (u >> 24) | ((u >> 8) & 0xFF00) | ((u << 8) & 0xFF0000) | (u << 24);
-  std::int32_t r;
-  std::memcpy(&r, &u, 4);
-  return r;
-}
-constexpr std::size_t kSsHeader = 16, kSsParticle = 96;
-constexpr std::int32_t kMagicStandard = -1, kMagicReduced = -10101;
-} // namespace
-
-ParticleFrame parseSs(std::string_view bytes, const std::string& fileName, bool scaleToSI) {
-  auto fail = [&](std::size_t offset, const std::string& what) -> void {
-    throw ParseError(fileName + ": byte " + std::to_string(offset) + ": " + what);
-  };
-  if (bytes.size() < kSsHeader)
-    fail(0, "truncated header (" + std::to_string(bytes.size()) + " bytes, a .ss header has 16)");
-  const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
-  const double time = loadDouble(p);
-  const std::int32_t n = loadInt(p + 8), magic = loadInt(p + 12);
-  if (magic == kMagicReduced)
-    fail(12, "the reduced .ss format (magic -10101) is not supported; write the standard format");
-  if (magic != kMagicStandard) {
-    if (byteSwapped(magic) == kMagicStandard || byteSwapped(magic) == kMagicReduced)
-      fail(12, "little-endian .ss file: pkdgrav writes XDR (big-endian)");
-    fail(12,
-         "wrong magic number " + std::to_string(magic) + " (expected -1): not a pkdgrav .ss file");
-  }
-  // A little-endian file (not XDR) shows itself by a count that fits the size only swapped.
-  const std::int32_t swapped = byteSwapped(n);
-  if (swapped >= 0 && swapped != n &&
-      bytes.size() == kSsHeader + kSsParticle * static_cast<std::size_t>(swapped))
-    fail(8, "little-endian .ss file: pkdgrav writes XDR (big-endian)");
-  if (n < 0)
-    fail(8, "negative particle count " + std::to_string(n));
-  const std::size_t need = kSsHeader + kSsParticle * static_cast<std::size_t>(n);
-  if (bytes.size() < need)
-    fail(8, "the header declares " + std::to_string(n) + " particles (" + std::to_string(need) +
-                " bytes) but the file has " + std::to_string(bytes.size()) + " bytes");
-  if (bytes.size() > need)
-    fail(need, std::to_string(bytes.size() - need) + " unexpected bytes after the last particle");
-  const double L = scaleToSI ? PkdgravUnits::length : 1.0, M = scaleToSI ? PkdgravUnits::mass : 1.0,
-               T = scaleToSI ? PkdgravUnits::time() : 1.0;
-  ParticleFrame f;
-  f.time = time * T;
-  ParticleSet& s = f.particles;
-  const std::size_t count = static_cast<std::size_t>(n);
-  s.position.resize(3 * count);
-  s.velocity.resize(3 * count);
-  s.angularVelocity.resize(3 * count);
-  s.radius.resize(count);
-  s.mass.resize(count);
-  s.density.resize(count);
-  s.material.assign(count, 0);
-  s.id.resize(count);
-  ExtraArray color{"Color", 1, std::vector<double>(count)};
-#pragma omp parallel for schedule(static) if (count >= 20000)
-  for (std::size_t i = 0; i < count; ++i) {
-    const unsigned char* q = p + kSsHeader + kSsParticle * i;
-    s.mass[i] = loadDouble(q) * M;
-    s.radius[i] = loadDouble(q + 8) * L;
-    for (int k = 0; k < 3; ++k) {
-      s.position[3 * i + k] = loadDouble(q + 16 + 8 * k) * L;
-      s.velocity[3 * i + k] = loadDouble(q + 40 + 8 * k) * (L / T);
-      s.angularVelocity[3 * i + k] = loadDouble(q + 64 + 8 * k) / T;
-    }
-    color.values[i] = loadInt(q + 88);
-    s.id[i] = loadInt(q + 92);
-    const double r = s.radius[i];
-    s.density[i] = r > 0.0 ? s.mass[i] / (4.0 / 3.0 * M_PI * r * r * r) : 0.0;
-  }
-  f.extra.push_back(std::move(color));
-  f.hasVelocity = f.hasAngularVelocity = f.hasRadius = f.hasMass = f.hasDensity = f.hasId = true;
-  return f;
-}
-
-std::string writeSs(const ParticleFrame& frame, bool scaleFromSI) {
-  const ParticleSet& s = frame.particles;
-  const std::size_t n = s.size();
-  if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()) / kSsParticle)
-    throw InputError("too many particles for a .ss file (" + std::to_string(n) + ")");
-  const double L = scaleFromSI ? PkdgravUnits::length : 1.0,
-               M = scaleFromSI ? PkdgravUnits::mass : 1.0,
-               T = scaleFromSI ? PkdgravUnits::time() : 1.0;
-  const ExtraArray* color = nullptr;
-  for (const ExtraArray& x : frame.extra)
-    if (x.name == "Color" && x.components == 1 && x.values.size() == n)
-      color = &x;
-  std::string out;
-  out.reserve(kSsHeader + kSsParticle * n);
-  storeDouble(out, frame.time / T);
-  storeInt(out, static_cast<std::int32_t>(n));
-  storeInt(out, kMagicStandard);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (s.id[i] < std::numeric_limits<std::int32_t>::min() ||
-        s.id[i] > std::numeric_limits<std::int32_t>::max())
-      throw InputError("particle Id " + std::to_string(s.id[i]) +
-                       " does not fit the .ss original index (32 bits)");
-    storeDouble(out, s.mass[i] / M);
-    storeDouble(out, s.radius[i] / L);
-    for (int k = 0; k < 3; ++k)
-      storeDouble(out, s.position[3 * i + k] / L);
-    for (int k = 0; k < 3; ++k)
-      storeDouble(out, s.velocity[3 * i + k] / (L / T));
-    for (int k = 0; k < 3; ++k)
-      storeDouble(out, s.angularVelocity[3 * i + k] * T);
-    // pkdgrav colours: keep the file's, else 3 (green) for material 0, 4, 5, ... for the rest.
-    storeInt(out, color ? static_cast<std::int32_t>(color->values[i]) : 3 + s.material[i]);
-    storeInt(out, static_cast<std::int32_t>(s.id[i]));
-  }
-  return out;
-}
-
-// ---- files
-// ------------------------------------------------------------------------------------------
-
-FileBytes::FileBytes(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0)
-    throw ParseError(path + ": cannot open the file");
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd);
-    throw ParseError(path + ": not a regular file");
-  }
-  const std::size_t size = static_cast<std::size_t>(st.st_size);
-  if (size > 0) {
-    void* m = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
-    if (m == MAP_FAILED) {
-      ::close(fd);
-      throw ParseError(path + ": cannot map the file (" + std::strerror(errno) + ")");
-    }
-    map_ = static_cast<const char*>(m);
-    size_ = size;
-  }
-  ::close(fd);
-  if (size_ >= 2 && static_cast<unsigned char>(map_[0]) == 0x1f &&
-      static_cast<unsigned char>(map_[1]) == 0x8b) {
-    std::string out;
-    try {
-      out = gunzip(std::string_view(map_, size_), path);
-    } catch (...) {
-      ::munmap(const_cast<char*>(map_), size_);
-      throw;
-    }
-    ::munmap(const_cast<char*>(map_), size_);
-    map_ = nullptr;
-    size_ = 0;
-    owned_ = std::move(out);
-  }
-}
-
-FileBytes::~FileBytes() {
-  if (map_)
-    ::munmap(const_cast<char*>(map_), size_);
-}
-
-std::string readFileBytes(const std::string& path) {
-  const FileBytes file(path);
-  return std::string(file.view());
-}
-
-std::string gunzip(std::string_view raw, const std::string& path) {
-  // deflate cannot expand more than about 1032:1, so cap the output there.
-  const std::size_t cap = raw.size() * 1032 + (1u << 20);
-  z_stream z{};
-  if (inflateInit2(&z, 16 + MAX_WBITS) != Z_OK)
-    throw ParseError(path + ": cannot initialise zlib");
-  std::string out;
-  out.resize(std::min<std::size_t>(cap, std::max<std::size_t>(raw.size() * 4, 1 << 16)));
-  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(raw.data()));
-  z.avail_in =
-      static_cast<uInt>(std::min<std::size_t>(raw.size(), std::numeric_limits<uInt>::max()));
-  std::size_t produced = 0;
-  int rc = Z_OK;
-  while (rc != Z_STREAM_END) {
-    if (produced == out.size()) {
-      if (out.size() >= cap) {
-        inflateEnd(&z);
-        throw ParseError(path + ": gzip data expands beyond 1032 times the file size");
-      }
-      out.resize(std::min(cap, out.size() * 2));
-    }
-    z.next_out = reinterpret_cast<Bytef*>(out.data() + produced);
-    z.avail_out = static_cast<uInt>(
-        std::min<std::size_t>(out.size() - produced, std::numeric_limits<uInt>::max()));
-    const uInt before = z.avail_out;
-    rc = inflate(&z, Z_NO_FLUSH);
-    produced += before - z.avail_out;
-    if (rc == Z_STREAM_END)
-      break;
-    if (rc != Z_OK && rc != Z_BUF_ERROR) {
-      const std::size_t at = z.total_in;
-      inflateEnd(&z);
-      throw ParseError(path + ": byte " + std::to_string(at) + " of the gzip stream: corrupt data");
-    }
-    if (rc == Z_BUF_ERROR && z.avail_in == 0) {
-      inflateEnd(&z);
-      throw ParseError(path + ": truncated gzip stream after " + std::to_string(produced) +
-                       " bytes of data");
-    }
-  }
-  inflateEnd(&z);
-  out.resize(produced);
   return out;
 }
 

@@ -1,5 +1,6 @@
 // Conversions between CraterKit solver state and VTK data, and the one place where
-// solver exceptions become VTK errors. Private to the CraterKit::Filters module.
+// solver exceptions become VTK errors. The header-only CraterKit::Bridge module, which the
+// CraterKit::Filters and CraterKit::Readers modules both depend on.
 #pragma once
 
 #include "common/Error.h"
