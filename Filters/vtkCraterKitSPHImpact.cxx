@@ -12,8 +12,6 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
-#include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <vector>
 
@@ -21,14 +19,6 @@ vtkStandardNewMacro(vtkCraterKitSPHImpact);
 
 vtkCraterKitSPHImpact::vtkCraterKitSPHImpact() { this->SetNumberOfInputPorts(0); }
 vtkCraterKitSPHImpact::~vtkCraterKitSPHImpact() = default;
-
-namespace {
-std::string DefaultMaterialDirectory() {
-  if (const char* env = std::getenv("CRATERKIT_MATERIALS"))
-    return env;
-  return CRATERKIT_MATERIALS_DIR;
-}
-} // namespace
 
 int vtkCraterKitSPHImpact::RequestInformation(vtkInformation*, vtkInformationVector**,
                                               vtkInformationVector* outputVector) {
@@ -42,17 +32,11 @@ int vtkCraterKitSPHImpact::RequestInformation(vtkInformation*, vtkInformationVec
   return 1;
 }
 
-void vtkCraterKitSPHImpact::BuildRun() {
-  using namespace craterkit;
-  if (!(this->EndTime >= 0.0) || !std::isfinite(this->EndTime))
-    throw InputError("EndTime must be a non-negative time in s");
-  if (!(this->OutputInterval > 0.0))
-    throw InputError("OutputInterval must be positive");
-  if (!(this->MinTimeStep >= 0.0))
-    throw InputError("MinTimeStep must not be negative");
+craterkit::SphImpactSetup vtkCraterKitSPHImpact::Setup() const {
+  using craterkit::SphImpactSetup;
   SphImpactSetup setup;
   setup.materialDirectory =
-      this->MaterialDirectory.empty() ? DefaultMaterialDirectory() : this->MaterialDirectory;
+      craterkit::materialDirectory(this->MaterialDirectory, CRATERKIT_MATERIALS_DIR);
   setup.impactorMaterial = this->ImpactorMaterial;
   setup.impactorMass = this->ImpactorMass;
   setup.impactorRadius = this->ImpactorRadius;
@@ -68,7 +52,13 @@ void vtkCraterKitSPHImpact::BuildRun() {
   setup.surfaceGravity = this->SurfaceGravity;
   setup.particlesAcrossImpactor = this->ParticlesAcrossImpactor;
   setup.container = this->TargetContainer;
-  SphImpactProblem problem = buildImpact(setup);
+  return setup;
+}
+
+void vtkCraterKitSPHImpact::BuildRun() {
+  using namespace craterkit;
+  checkImpactTimes(this->EndTime, this->OutputInterval, this->MinTimeStep);
+  SphImpactProblem problem = buildImpact(this->Setup());
   SphParams& p = problem.params;
   p.kernel = enums::kKernel.toSolver(this->Kernel);
   p.alpha = this->ArtificialViscosityAlpha;
@@ -118,30 +108,10 @@ int vtkCraterKitSPHImpact::RequestData(vtkInformation*, vtkInformationVector**,
   // The container's particles are the last ones; like the DEM's walls they are not output.
   const std::size_t nOut = s.size() - this->ContainerParticles;
   const vtkIdType n = static_cast<vtkIdType>(nOut);
-  auto head = [nOut](const std::vector<double>& v, std::size_t components) {
-    return std::vector<double>(v.begin(),
-                               v.begin() + static_cast<std::ptrdiff_t>(nOut * components));
-  };
-  b::setVertices(output, head(s.x, 3));
-
+  b::setVertices(output, std::vector<double>(s.x.begin(), s.x.begin() + 3 * n));
   vtkPointData* pd = output->GetPointData();
-  pd->AddArray(b::doubleArray("Velocity", 3, head(s.v, 3)));
-  pd->AddArray(b::doubleArray("Density", 1, head(s.rho, 1)));
-  pd->AddArray(b::doubleArray("Mass", 1, head(s.mass, 1)));
-  pd->AddArray(b::doubleArray("Pressure", 1, head(solver.pressure(), 1)));
-  pd->AddArray(b::doubleArray("InternalEnergy", 1, head(s.u, 1)));
-  pd->AddArray(b::doubleArray("Distention", 1, head(s.alpha, 1)));
-  pd->AddArray(b::doubleArray("Damage", 1, head(s.damage, 1)));
-  pd->AddArray(b::doubleArray("SmoothingLength", 1, head(s.h, 1)));
-  pd->AddArray(b::doubleArray("SoundSpeed", 1, head(solver.soundSpeed(), 1)));
-  // VTK's symmetric tensor order is XX YY ZZ XY YZ XZ; the solver stores XX YY ZZ XY XZ YZ.
-  std::vector<double> stress(6 * nOut);
-  for (vtkIdType i = 0; i < n; ++i) {
-    const double* S = &s.S[6 * i];
-    double* o = &stress[6 * i];
-    o[0] = S[0], o[1] = S[1], o[2] = S[2], o[3] = S[3], o[4] = S[5], o[5] = S[4];
-  }
-  pd->AddArray(b::doubleArray("DeviatoricStress", 6, stress));
+  for (const SphImpactArray& a : impactArrays(solver, nOut))
+    pd->AddArray(b::doubleArray(a.name.c_str(), a.components, a.values));
   pd->AddArray(
       b::intArray("Material", std::vector<int>(s.material.begin(), s.material.begin() + n)));
   std::vector<std::int64_t> ids(nOut);
@@ -151,33 +121,13 @@ int vtkCraterKitSPHImpact::RequestData(vtkInformation*, vtkInformationVector**,
   pd->SetActiveScalars("Pressure");
 
   vtkFieldData* fd = output->GetFieldData();
-  b::addField(fd, "Time", solver.time());
-  b::addField(fd, "Step", static_cast<double>(solver.steps()));
-  b::addField(fd, "TimeStep", solver.stableStep());
-  const double g[3] = {0.0, 0.0, -this->SurfaceGravity};
-  b::addField(fd, "Gravity", g, 3);
-  double P[3], L[3];
-  solver.totalMomentum(P);
-  solver.totalAngularMomentum(L);
-  b::addField(fd, "TotalMomentum", P, 3);
-  b::addField(fd, "TotalAngularMomentum", L, 3);
-  b::addField(fd, "KineticEnergy", solver.kineticEnergy());
-  b::addField(fd, "InternalEnergyTotal", solver.internalEnergy());
-  b::addField(fd, "GravitationalEnergy", solver.potentialEnergy());
-  b::addField(fd, "TotalEnergy", solver.totalEnergy());
-  b::addField(fd, "ParticleSpacing", this->Spacing);
-  b::addField(fd, "SurfaceHeight", 0.0);
-  b::addField(fd, "TargetRadius", this->TargetRadius);
-  b::addField(fd, "TargetCoarsening", this->TargetCoarsening);
-  b::addField(fd, "TargetContainer", this->TargetContainer ? 1.0 : 0.0);
-  b::addField(fd, "ContainerParticles", static_cast<double>(this->ContainerParticles));
-  b::addField(fd, "TargetShape", std::string(enums::kTargetShape.text(this->TargetShape)));
-  b::addField(fd, "ImpactSpeed", this->ImpactSpeed);
-  b::addField(fd, "ImpactAngle", this->ImpactAngle);
-  b::addField(fd, "ImpactorMaterial", this->ImpactorMaterial);
-  b::addField(fd, "ImpactorMass", this->ImpactorMass);
-  b::addField(fd, "TargetMaterial", this->TargetMaterial);
-  b::addField(fd, "FrictionAngle", this->FrictionAngle);
+  for (const SphImpactField& f :
+       impactFields(solver, this->Setup(), this->Spacing, this->ContainerParticles)) {
+    if (f.isText)
+      b::addField(fd, f.name.c_str(), f.text);
+    else
+      b::addField(fd, f.name.c_str(), f.values.data(), static_cast<int>(f.values.size()));
+  }
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
   return 1;
 }

@@ -26,7 +26,8 @@
 
 namespace craterkit {
 class SphRun;
-}
+struct SphImpactSetup;
+} // namespace craterkit
 
 class CRATERKITFILTERS_EXPORT vtkCraterKitSPHImpact : public vtkPolyDataAlgorithm {
 public:
@@ -113,6 +114,7 @@ protected:
 private:
   vtkCraterKitSPHImpact(const vtkCraterKitSPHImpact&) = delete;
   void operator=(const vtkCraterKitSPHImpact&) = delete;
+  craterkit::SphImpactSetup Setup() const; // the properties as the solver's set-up
   void BuildRun();
 
   std::string

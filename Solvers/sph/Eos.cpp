@@ -54,6 +54,34 @@ double EquationOfState::pressure(double rho, double u) const {
   return 0.0;
 }
 
+double EquationOfState::referenceDensity() const {
+  switch (model) {
+  case Model::Tillotson:
+    return tillotson.rho0;
+  case Model::Murnaghan:
+    return murnaghanRho0;
+  case Model::StiffenedGas:
+    return stiffRho0;
+  case Model::IdealGas:
+    break;
+  }
+  return 0.0;
+}
+
+double EquationOfState::referenceBulkModulus() const {
+  return model == Model::Tillotson ? tillotson.A : murnaghanK0;
+}
+
+double EquationOfState::switchToLateStage(double c) {
+  const double rho0 = referenceDensity(), K = rho0 * c * c;
+  model = Model::Murnaghan;
+  murnaghanRho0 = rho0;
+  murnaghanK0 = K;
+  murnaghanN = 1.0;
+  soundSpeedFloor = 0.01 * c;
+  return K;
+}
+
 double EquationOfState::soundSpeed(double rho, double u) const {
   double c2 = 0.0;
   switch (model) {

@@ -2,6 +2,9 @@
 // Tillotson (Tillotson 1962; as in miluphcuda's pressure.cu), Murnaghan, ideal gas, stiffened gas.
 // Pressure p(ρ, u) in Pa for density ρ (kg/m³) and specific internal energy u (J/kg); the
 // sound speed comes from c² = ∂p/∂ρ|_u + (p/ρ²) ∂p/∂u|_ρ, floored at `soundSpeedFloor`.
+// Late stage (after Raducan & Jutzi 2022; PHYSICS.md §2.8): a Tillotson or Murnaghan law is
+// replaced by the linear p = K (ρ/ρ0 − 1), K = ρ0 c², with a low sound speed c, so that the
+// Courant step grows and a run can follow the slow, gravity-driven crater growth.
 #pragma once
 
 #include <string>
@@ -32,6 +35,15 @@ struct EquationOfState {
   double soundSpeedFloor = 0.0; // m/s; Tillotson default: 1 % of sqrt(A/ρ0) (set by validate)
 
   double pressure(double rho, double u) const;
+  // ρ0 of the law (Tillotson, Murnaghan, stiffened gas); 0 for the ideal gas, which has none.
+  double referenceDensity() const;
+  // Whether the law has a late-stage form (Tillotson, Murnaghan; the gases keep theirs).
+  bool hasLateStage() const { return model == Model::Tillotson || model == Model::Murnaghan; }
+  // The bulk modulus the law states at ρ0: Tillotson's A, Murnaghan's K0 (late-stage laws).
+  double referenceBulkModulus() const;
+  // Switches a law with a late-stage form to the linear Murnaghan law (n = 1) of sound speed
+  // c, with the sound-speed floor at 1 % of c; returns its K = ρ0 c².
+  double switchToLateStage(double c);
   double soundSpeed(double rho, double u) const;
   // Throws InputError naming the bad parameter.
   void validate();

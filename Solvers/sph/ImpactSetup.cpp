@@ -7,22 +7,16 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <utility>
 #include <vector>
 
 namespace craterkit {
 
 namespace {
 double referenceDensity(const EquationOfState& e) {
-  switch (e.model) {
-  case EquationOfState::Model::Tillotson:
-    return e.tillotson.rho0;
-  case EquationOfState::Model::Murnaghan:
-    return e.murnaghanRho0;
-  case EquationOfState::Model::StiffenedGas:
-    return e.stiffRho0;
-  case EquationOfState::Model::IdealGas:
-    break;
-  }
+  if (e.model != EquationOfState::Model::IdealGas)
+    return e.referenceDensity();
   throw InputError("SPHImpact: an ideal gas has no reference density to build a solid body from");
 }
 
@@ -97,6 +91,127 @@ std::vector<Shell> gradedShells(double core, double dx, double coarsening, doubl
   }
   return out;
 }
+// Refuses what the machine cannot hold before anything is allocated.
+void checkMemory(const SphImpactSetup& setup, double R, double dx, double core, bool graded,
+                 const std::vector<Shell>& shells) {
+  const double volume = setup.targetShape == SphImpactSetup::Shape::Hemisphere
+                            ? 2.0 / 3.0 * M_PI * R * R * R
+                            : 4.0 * R * R * R;
+  double estimate =
+      volume / (dx * dx * dx) + 4.0 / 3.0 * M_PI * std::pow(0.5 * setup.particlesAcrossImpactor, 3);
+  if (graded) {
+    estimate = 2.0 / 3.0 * M_PI * core * core * core / (dx * dx * dx) +
+               4.0 / 3.0 * M_PI * std::pow(0.5 * setup.particlesAcrossImpactor, 3);
+    for (const Shell& sh : shells)
+      estimate += static_cast<double>(sh.count);
+  }
+  const double need = estimate * static_cast<double>(sphBytesPerParticle(2.5));
+  const double have = static_cast<double>(physicalMemory());
+  if (estimate > 1.2e8 || (have > 0.0 && need > setup.memoryLimitFraction * have))
+    throw InputError("SPHImpact: about " + std::to_string(static_cast<long long>(estimate)) +
+                     " particles would need " + std::to_string(static_cast<long long>(need / 1e9)) +
+                     " GB of memory (" + std::to_string(static_cast<long long>(have / 1e9)) +
+                     " GB here): lower ParticlesAcrossImpactor or TargetRadius");
+}
+
+// The impactor: the lattice points within its radius a, moving at the impact speed and angle,
+// its lowest particles half a spacing above z = 0.
+void addImpactor(SphImpactProblem& out, const SphImpactSetup& setup, double a, double dx,
+                 double mass, double rhoImp) {
+  const double th = setup.impactAngle * M_PI / 180.0;
+  const double dir[3] = {std::sin(th), 0.0, -std::cos(th)};
+  const double gap = 0.5 * dx; // the impactor's lowest particles sit half a spacing above z = 0
+  const double centre[3] = {-dir[0] * (a + gap), 0.0, -dir[2] * (a + gap)};
+  const double vel[3] = {setup.impactSpeed * dir[0], 0.0, setup.impactSpeed * dir[2]};
+  const int n = static_cast<int>(std::ceil(a / dx)) + 1;
+  std::vector<double> pts;
+  for (int i = -n; i <= n; ++i)
+    for (int j = -n; j <= n; ++j)
+      for (int k = -n; k <= n; ++k) {
+        const double p[3] = {(i + 0.5) * dx, (j + 0.5) * dx, (k + 0.5) * dx};
+        if (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] <= a * a)
+          pts.insert(pts.end(), p, p + 3);
+      }
+  const std::size_t ni = pts.size() / 3;
+  if (ni == 0)
+    throw InputError("SPHImpact: the impactor has no particles");
+  for (std::size_t q = 0; q < ni; ++q) {
+    const double x[3] = {centre[0] + pts[3 * q], centre[1] + pts[3 * q + 1],
+                         centre[2] + pts[3 * q + 2]};
+    out.state.add(x, vel, mass / static_cast<double>(ni), rhoImp, 0.0, 0);
+  }
+  out.impactorParticles = ni;
+}
+
+// The graded target: the lattice core, then the shells (the container's last).
+void addGradedTarget(SphImpactProblem& out, const Material& tgt, double core, double dx,
+                     const std::vector<Shell>& shells, std::size_t targetShells) {
+  const double mt = out.targetBulkDensity * dx * dx * dx, rest[3] = {0, 0, 0};
+  // The lattice core, then the shells: points spread evenly over each lower hemisphere
+  // (uniform in z is uniform in area), turned by the golden angle from point to point and by
+  // a different angle on every shell so that neighbouring shells do not line up.
+  const int mc = static_cast<int>(std::ceil(core / dx));
+  for (int k = 0; k < mc; ++k)
+    for (int j = -mc; j < mc; ++j)
+      for (int i = -mc; i < mc; ++i) {
+        const double x[3] = {(i + 0.5) * dx, (j + 0.5) * dx, -(k + 0.5) * dx};
+        if (x[0] * x[0] + x[1] * x[1] + x[2] * x[2] > core * core)
+          continue;
+        out.state.add(x, rest, mt, out.targetBulkDensity, 0.0, 1);
+        out.state.alpha.back() = tgt.distention;
+      }
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  double inner = core;
+  for (std::size_t k = 0; k < shells.size(); ++k) {
+    const Shell& sh = shells[k];
+    const double outer = inner + sh.thickness;
+    const int mat = k < targetShells ? 1 : 2; // the container's shells last
+    const double volumeShare = 2.0 / 3.0 * M_PI * (outer * outer * outer - inner * inner * inner) /
+                               static_cast<double>(sh.count);
+    const double turn = golden * 7.0 * static_cast<double>(k);
+    for (std::size_t q = 0; q < sh.count; ++q) {
+      const double z = -(static_cast<double>(q) + 0.5) / static_cast<double>(sh.count);
+      const double rho = std::sqrt(std::max(0.0, 1.0 - z * z)),
+                   phi = turn + golden * static_cast<double>(q);
+      const double x[3] = {sh.mid * rho * std::cos(phi), sh.mid * rho * std::sin(phi), sh.mid * z};
+      out.state.add(x, rest, out.targetBulkDensity * volumeShare, out.targetBulkDensity, 0.0, mat);
+      out.state.alpha.back() = tgt.distention;
+      out.containerParticles += mat == 2 ? 1 : 0;
+    }
+    inner = outer;
+  }
+}
+
+// The uniform target on the lattice, then its container (material 2), if any.
+void addLatticeTarget(SphImpactProblem& out, const SphImpactSetup& setup, const Material& tgt,
+                      double R, double dx, bool graded) {
+  const bool hemisphere = setup.targetShape == SphImpactSetup::Shape::Hemisphere;
+  const double mt = out.targetBulkDensity * dx * dx * dx, rest[3] = {0, 0, 0};
+  // Inside the target (0), in its container shell (1), or outside both (-1).
+  const double wall = 3.0 * dx, Rw = R + wall;
+  auto where = [&](const double* x) {
+    if (hemisphere) {
+      const double r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+      return r2 <= R * R ? 0 : (setup.container && r2 <= Rw * Rw ? 1 : -1);
+    }
+    if (std::fabs(x[0]) <= R && std::fabs(x[1]) <= R && x[2] >= -R)
+      return 0;
+    return setup.container && std::fabs(x[0]) <= Rw && std::fabs(x[1]) <= Rw && x[2] >= -Rw ? 1
+                                                                                            : -1;
+  };
+  const int m = graded ? 0 : static_cast<int>(std::ceil((setup.container ? Rw : R) / dx));
+  for (int pass = 0; pass < 2; ++pass) // the target first, then its container
+    for (int k = 0; k < m; ++k)
+      for (int j = -m; j < m; ++j)
+        for (int i = -m; i < m; ++i) {
+          const double x[3] = {(i + 0.5) * dx, (j + 0.5) * dx, -(k + 0.5) * dx};
+          if (where(x) != pass)
+            continue;
+          out.state.add(x, rest, mt, out.targetBulkDensity, 0.0, 1 + pass);
+          out.state.alpha.back() = tgt.distention;
+          out.containerParticles += static_cast<std::size_t>(pass);
+        }
+}
 } // namespace
 
 SphImpactProblem buildImpact(const SphImpactSetup& setup) {
@@ -140,115 +255,11 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
         shells.push_back(shellAt(start + (k + 0.5) * t, t));
     }
   }
-
-  // Refuse what the machine cannot hold before allocating anything.
-  const double volume = setup.targetShape == SphImpactSetup::Shape::Hemisphere
-                            ? 2.0 / 3.0 * M_PI * R * R * R
-                            : 4.0 * R * R * R;
-  double estimate =
-      volume / (dx * dx * dx) + 4.0 / 3.0 * M_PI * std::pow(0.5 * setup.particlesAcrossImpactor, 3);
-  if (graded) {
-    estimate = 2.0 / 3.0 * M_PI * core * core * core / (dx * dx * dx) +
-               4.0 / 3.0 * M_PI * std::pow(0.5 * setup.particlesAcrossImpactor, 3);
-    for (const Shell& sh : shells)
-      estimate += static_cast<double>(sh.count);
-  }
-  const double need = estimate * static_cast<double>(sphBytesPerParticle(2.5));
-  const double have = static_cast<double>(physicalMemory());
-  if (estimate > 1.2e8 || (have > 0.0 && need > setup.memoryLimitFraction * have))
-    throw InputError("SPHImpact: about " + std::to_string(static_cast<long long>(estimate)) +
-                     " particles would need " + std::to_string(static_cast<long long>(need / 1e9)) +
-                     " GB of memory (" + std::to_string(static_cast<long long>(have / 1e9)) +
-                     " GB here): lower ParticlesAcrossImpactor or TargetRadius");
-
-  const double th = setup.impactAngle * M_PI / 180.0;
-  const double dir[3] = {std::sin(th), 0.0, -std::cos(th)};
-  const double gap = 0.5 * dx; // the impactor's lowest particles sit half a spacing above z = 0
-  const double centre[3] = {-dir[0] * (a + gap), 0.0, -dir[2] * (a + gap)};
-  const double vel[3] = {setup.impactSpeed * dir[0], 0.0, setup.impactSpeed * dir[2]};
-  const int n = static_cast<int>(std::ceil(a / dx)) + 1;
-  std::vector<double> pts;
-  for (int i = -n; i <= n; ++i)
-    for (int j = -n; j <= n; ++j)
-      for (int k = -n; k <= n; ++k) {
-        const double p[3] = {(i + 0.5) * dx, (j + 0.5) * dx, (k + 0.5) * dx};
-        if (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] <= a * a)
-          pts.insert(pts.end(), p, p + 3);
-      }
-  const std::size_t ni = pts.size() / 3;
-  if (ni == 0)
-    throw InputError("SPHImpact: the impactor has no particles");
-  for (std::size_t q = 0; q < ni; ++q) {
-    const double x[3] = {centre[0] + pts[3 * q], centre[1] + pts[3 * q + 1],
-                         centre[2] + pts[3 * q + 2]};
-    out.state.add(x, vel, mass / static_cast<double>(ni), rhoImp, 0.0, 0);
-  }
-  out.impactorParticles = ni;
-
-  const bool hemisphere = setup.targetShape == SphImpactSetup::Shape::Hemisphere;
-  const double mt = out.targetBulkDensity * dx * dx * dx, rest[3] = {0, 0, 0};
-  // Inside the target (0), in its container shell (1), or outside both (-1).
-  const double wall = 3.0 * dx, Rw = R + wall;
-  auto where = [&](const double* x) {
-    if (hemisphere) {
-      const double r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
-      return r2 <= R * R ? 0 : (setup.container && r2 <= Rw * Rw ? 1 : -1);
-    }
-    if (std::fabs(x[0]) <= R && std::fabs(x[1]) <= R && x[2] >= -R)
-      return 0;
-    return setup.container && std::fabs(x[0]) <= Rw && std::fabs(x[1]) <= Rw && x[2] >= -Rw ? 1
-                                                                                            : -1;
-  };
-  if (graded) {
-    // The lattice core, then the shells: points spread evenly over each lower hemisphere
-    // (uniform in z is uniform in area), turned by the golden angle from point to point and by
-    // a different angle on every shell so that neighbouring shells do not line up.
-    const int mc = static_cast<int>(std::ceil(core / dx));
-    for (int k = 0; k < mc; ++k)
-      for (int j = -mc; j < mc; ++j)
-        for (int i = -mc; i < mc; ++i) {
-          const double x[3] = {(i + 0.5) * dx, (j + 0.5) * dx, -(k + 0.5) * dx};
-          if (x[0] * x[0] + x[1] * x[1] + x[2] * x[2] > core * core)
-            continue;
-          out.state.add(x, rest, mt, out.targetBulkDensity, 0.0, 1);
-          out.state.alpha.back() = tgt.distention;
-        }
-    const double golden = M_PI * (3.0 - std::sqrt(5.0));
-    double inner = core;
-    for (std::size_t k = 0; k < shells.size(); ++k) {
-      const Shell& sh = shells[k];
-      const double outer = inner + sh.thickness;
-      const int mat = k < targetShells ? 1 : 2; // the container's shells last
-      const double volumeShare = 2.0 / 3.0 * M_PI *
-                                 (outer * outer * outer - inner * inner * inner) /
-                                 static_cast<double>(sh.count);
-      const double turn = golden * 7.0 * static_cast<double>(k);
-      for (std::size_t q = 0; q < sh.count; ++q) {
-        const double z = -(static_cast<double>(q) + 0.5) / static_cast<double>(sh.count);
-        const double rho = std::sqrt(std::max(0.0, 1.0 - z * z)),
-                     phi = turn + golden * static_cast<double>(q);
-        const double x[3] = {sh.mid * rho * std::cos(phi), sh.mid * rho * std::sin(phi),
-                             sh.mid * z};
-        out.state.add(x, rest, out.targetBulkDensity * volumeShare, out.targetBulkDensity, 0.0,
-                      mat);
-        out.state.alpha.back() = tgt.distention;
-        out.containerParticles += mat == 2 ? 1 : 0;
-      }
-      inner = outer;
-    }
-  }
-  const int m = graded ? 0 : static_cast<int>(std::ceil((setup.container ? Rw : R) / dx));
-  for (int pass = 0; pass < 2; ++pass) // the target first, then its container
-    for (int k = 0; k < m; ++k)
-      for (int j = -m; j < m; ++j)
-        for (int i = -m; i < m; ++i) {
-          const double x[3] = {(i + 0.5) * dx, (j + 0.5) * dx, -(k + 0.5) * dx};
-          if (where(x) != pass)
-            continue;
-          out.state.add(x, rest, mt, out.targetBulkDensity, 0.0, 1 + pass);
-          out.state.alpha.back() = tgt.distention;
-          out.containerParticles += static_cast<std::size_t>(pass);
-        }
+  checkMemory(setup, R, dx, core, graded, shells);
+  addImpactor(out, setup, a, dx, mass, rhoImp);
+  if (graded)
+    addGradedTarget(out, tgt, core, dx, shells, targetShells);
+  addLatticeTarget(out, setup, tgt, R, dx, graded);
   out.params.materials = {imp, tgt};
   if (setup.container) {
     Material shell = tgt;
@@ -258,6 +269,74 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
   }
   out.params.gravity[2] = -setup.surfaceGravity;
   return out;
+}
+
+void checkImpactTimes(double endTime, double outputInterval, double minTimeStep) {
+  if (!(endTime >= 0.0) || !std::isfinite(endTime))
+    throw InputError("EndTime must be a non-negative time in s");
+  if (!(outputInterval > 0.0))
+    throw InputError("OutputInterval must be positive");
+  if (!(minTimeStep >= 0.0))
+    throw InputError("MinTimeStep must not be negative");
+}
+
+std::vector<SphImpactField> impactFields(const SphSolver& solver, const SphImpactSetup& setup,
+                                         double spacing, std::size_t containerParticles) {
+  double P[3], L[3];
+  solver.totalMomentum(P);
+  solver.totalAngularMomentum(L);
+  auto number = [](const char* name, double v) { return SphImpactField{name, {v}, "", false}; };
+  auto text = [](const char* name, const std::string& v) {
+    return SphImpactField{name, {}, v, true};
+  };
+  const bool halfSpace = setup.targetShape == SphImpactSetup::Shape::HalfSpace;
+  return {number("Time", solver.time()),
+          number("Step", static_cast<double>(solver.steps())),
+          number("TimeStep", solver.stableStep()),
+          SphImpactField{"Gravity", {0.0, 0.0, -setup.surfaceGravity}, "", false},
+          SphImpactField{"TotalMomentum", {P[0], P[1], P[2]}, "", false},
+          SphImpactField{"TotalAngularMomentum", {L[0], L[1], L[2]}, "", false},
+          number("KineticEnergy", solver.kineticEnergy()),
+          number("InternalEnergyTotal", solver.internalEnergy()),
+          number("GravitationalEnergy", solver.potentialEnergy()),
+          number("TotalEnergy", solver.totalEnergy()),
+          number("ParticleSpacing", spacing),
+          number("SurfaceHeight", 0.0),
+          number("TargetRadius", setup.targetRadius),
+          number("TargetCoarsening", setup.coarsening),
+          number("TargetContainer", setup.container ? 1.0 : 0.0),
+          number("ContainerParticles", static_cast<double>(containerParticles)),
+          text("TargetShape", halfSpace ? "HalfSpace" : "Hemisphere"),
+          number("ImpactSpeed", setup.impactSpeed),
+          number("ImpactAngle", setup.impactAngle),
+          text("ImpactorMaterial", setup.impactorMaterial),
+          number("ImpactorMass", setup.impactorMass),
+          text("TargetMaterial", setup.targetMaterial),
+          number("FrictionAngle", setup.frictionAngle)};
+}
+
+std::vector<SphImpactArray> impactArrays(const SphSolver& solver, std::size_t count) {
+  const SphState& s = solver.state();
+  auto head = [count](const char* name, const std::vector<double>& v, int components) {
+    const auto end = v.begin() + static_cast<std::ptrdiff_t>(count * components);
+    return SphImpactArray{name, components, std::vector<double>(v.begin(), end)};
+  };
+  std::vector<double> stress(6 * count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const double* S = &s.S[6 * i];
+    double* o = &stress[6 * i];
+    o[0] = S[0], o[1] = S[1], o[2] = S[2], o[3] = S[3], o[4] = S[5], o[5] = S[4];
+  }
+  return {head("Velocity", s.v, 3),
+          head("Density", s.rho, 1),
+          head("Mass", s.mass, 1),
+          head("Pressure", solver.pressure(), 1),
+          head("InternalEnergy", s.u, 1),
+          head("Distention", s.alpha, 1),
+          head("Damage", s.damage, 1),
+          head("SmoothingLength", s.h, 1),
+          head("SoundSpeed", solver.soundSpeed(), 1),
+          SphImpactArray{"DeviatoricStress", 6, std::move(stress)}};
 }
 
 } // namespace craterkit

@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace craterkit {
 
@@ -59,6 +60,32 @@ struct SphImpactProblem {
 
 // Builds the particles; throws InputError naming the bad parameter before any work.
 SphImpactProblem buildImpact(const SphImpactSetup& setup);
+
+// The SPHImpact source's output time line: EndTime ≥ 0, OutputInterval > 0, MinTimeStep ≥ 0
+// (InputError naming the property).
+void checkImpactTimes(double endTime, double outputInterval, double minTimeStep);
+
+// One named value of the SPHImpact output's field data: numbers, or a text.
+struct SphImpactField {
+  std::string name;
+  std::vector<double> values;
+  std::string text;
+  bool isText = false;
+};
+// The run's clock, conserved totals and set-up, in the order the SPHImpact source writes them.
+std::vector<SphImpactField> impactFields(const SphSolver& solver, const SphImpactSetup& setup,
+                                         double spacing, std::size_t containerParticles);
+
+// One point array of the SPHImpact output: name, components per particle, values.
+struct SphImpactArray {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+};
+// The output particles' arrays: the first `count` particles (the container's, the last ones,
+// are left out), the deviatoric stress in the order XX YY ZZ XY YZ XZ of VTK's symmetric
+// tensors (the solver stores XX YY ZZ XY XZ YZ).
+std::vector<SphImpactArray> impactArrays(const SphSolver& solver, std::size_t count);
 
 // Bytes the solver needs per particle (state, two stages, neighbour list), for memory checks.
 std::size_t sphBytesPerParticle(double kappa);

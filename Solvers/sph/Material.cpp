@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -21,6 +22,30 @@ std::string trim(const std::string& s) {
   return s.substr(b, e - b + 1);
 }
 } // namespace
+
+double Material::switchToLateStage(double c) {
+  if (!eos.hasLateStage())
+    return 1.0; // gases keep their law
+  const double Kold = bulkModulus > 0.0 ? bulkModulus : eos.referenceBulkModulus();
+  const double K = eos.switchToLateStage(c);
+  double scale = 1.0;
+  if (shearModulus > 0.0) {
+    const double G = shearModulus, nu = (3.0 * Kold - 2.0 * G) / (2.0 * (3.0 * Kold + G));
+    const double Gnew = 3.0 * K * (1.0 - 2.0 * nu) / (2.0 * (1.0 + nu));
+    scale = Gnew / G;
+    shearModulus = Gnew;
+  }
+  bulkModulus = K;
+  return scale;
+}
+
+std::string materialDirectory(const std::string& chosen, const std::string& builtIn) {
+  if (!chosen.empty())
+    return chosen;
+  if (const char* env = std::getenv("CRATERKIT_MATERIALS"))
+    return env;
+  return builtIn;
+}
 
 Material fluidMaterial(const EquationOfState& eos, const std::string& name) {
   Material m;

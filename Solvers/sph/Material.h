@@ -27,6 +27,12 @@ struct Material {
   bool rigid = false;          // boundary particles: fixed in place, their density and stress
                                // evolve (dynamic boundary particles, Crespo et al. 2007)
   std::string source;          // where the values come from
+
+  // The late stage (sph/Eos.h): a material whose law has a late-stage form takes the linear law
+  // of sound speed c and keeps its Poisson ratio, so G falls with K. Returns the factor by which
+  // G fell (1: unchanged), by which each particle's deviatoric stress is scaled: the elastic
+  // strain is unchanged.
+  double switchToLateStage(double c);
 };
 
 // A material with this equation of state and no strength or porosity (a fluid).
@@ -36,6 +42,8 @@ Material fluidMaterial(const EquationOfState& eos, const std::string& name = "fl
 Material readMaterial(const std::string& path);
 // The materials of a directory (every *.cfg), sorted by name.
 std::vector<Material> readMaterialLibrary(const std::string& directory);
+// The material folder: `chosen`, else the environment's CRATERKIT_MATERIALS, else `builtIn`.
+std::string materialDirectory(const std::string& chosen, const std::string& builtIn);
 // The material called `name`; the error lists the names that exist.
 Material findMaterial(const std::string& directory, const std::string& name);
 

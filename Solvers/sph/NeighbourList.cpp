@@ -1,0 +1,540 @@
+#include "sph/NeighbourList.h"
+
+#include "sph/SimdClones.h"
+#include "sph/SphSolver.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace craterkit {
+
+namespace {
+
+constexpr int kMaxLevels = 16; // levels of h in the neighbour grids (√2 apart)
+
+// A run of candidate partners of one particle, in the neighbour grid's sorted order.
+struct CandidateRange {
+  const double *x, *y, *z, *h, *margin;
+  const std::uint32_t* entry; // index * 32 + image code
+  std::uint32_t count;
+};
+
+// Which candidates particle a (at xa, with h and margin ha, ma; `self` its own entry) lists:
+// those within grow max(h_a, h_b) plus the larger margin. keep[k] is 1 for those; returns true
+// if one not listed lies within twice the margin (a near miss). One vector pass, no branches.
+CK_SIMD_CLONES bool listCandidates(const CandidateRange& c, const double* xa, double ha, double ma,
+                                   double grow, std::uint32_t self, std::uint8_t* keep) {
+  const double x0 = xa[0], x1 = xa[1], x2 = xa[2];
+  int nearMiss = 0;
+#pragma omp simd reduction(| : nearMiss)
+  for (std::uint32_t k = 0; k < c.count; ++k) {
+    const double pairMu = std::max(ma, c.margin[k]);
+    const double cut = grow * std::max(ha, c.h[k]) + pairMu;
+    const double dx = x0 - c.x[k], dy = x1 - c.y[k], dz = x2 - c.z[k];
+    const double r2 = dx * dx + dy * dy + dz * dz;
+    const bool other = c.entry[k] != self;
+    const bool listed = (r2 < cut * cut) & other;
+    keep[k] = listed;
+    nearMiss |= !listed & other & (r2 < (cut + pairMu) * (cut + pairMu));
+  }
+  return nearMiss != 0;
+}
+
+// The particles inside the domain, then their periodic images within `reach` of the box:
+// positions (3 each) and entries (index * 32 + image code).
+void gatherCandidates(const SphState& s, const SphParams& par, const std::vector<char>& out,
+                      double reach, std::vector<double>& pos, std::vector<std::uint32_t>& id) {
+  const std::size_t n = s.size();
+  pos.reserve(3 * n);
+  id.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (!out[i]) {
+      pos.insert(pos.end(), &s.x[3 * i], &s.x[3 * i] + 3);
+      id.push_back(static_cast<std::uint32_t>(i * 32 + kNoShift));
+    }
+  for (int sx = -1; sx <= 1; ++sx)
+    for (int sy = -1; sy <= 1; ++sy)
+      for (int sz = -1; sz <= 1; ++sz) {
+        const int shift[3] = {sx, sy, sz};
+        bool ok = sx || sy || sz;
+        for (int k = 0; k < 3 && ok; ++k)
+          ok = shift[k] == 0 || par.periodic[k];
+        if (!ok)
+          continue;
+        const std::uint32_t code =
+            static_cast<std::uint32_t>((sx + 1) + 3 * (sy + 1) + 9 * (sz + 1));
+        for (std::size_t i = 0; i < n; ++i) {
+          if (out[i])
+            continue;
+          double y[3];
+          bool near = true;
+          for (int k = 0; k < 3 && near; ++k) {
+            y[k] = s.x[3 * i + k] + shift[k] * (par.boxHi[k] - par.boxLo[k]);
+            near =
+                !par.periodic[k] || (y[k] >= par.boxLo[k] - reach && y[k] <= par.boxHi[k] + reach);
+          }
+          if (!near)
+            continue;
+          pos.insert(pos.end(), y, y + 3);
+          id.push_back(static_cast<std::uint32_t>(i * 32 + code));
+        }
+      }
+}
+
+} // namespace
+
+bool outsideDomain(const SphState& s, const SphParams& par, std::size_t i) {
+  if (par.domainRadius <= 0.0)
+    return false;
+  const double* x = &s.x[3 * i];
+  const double dx = x[0] - par.domainCentre[0], dy = x[1] - par.domainCentre[1],
+               dz = x[2] - par.domainCentre[2];
+  return dx * dx + dy * dy + dz * dz > par.domainRadius * par.domainRadius;
+}
+
+bool NeighbourList::valid(const SphState& s, const SphParams& par, const std::vector<double>& dx,
+                          const std::vector<double>& dv, double dt) const {
+  // Valid while no pair can have come within its listing range without being listed. A pair
+  // closes in by at most the sum of its two particles' displacements D (since the build, plus
+  // 1.5 dt |v| for the motion still to come in this step). An unlisted pair had at least the
+  // larger of its two margins to spare; but a particle with a clearance C (no unlisted
+  // particle within twice the margin at the build: ejecta in flight, alone or in small clumps)
+  // had C to spare against everybody and needs only D + D_max < C. Such particles are left out
+  // of the pairs' check, so that a few fast fragments do not force a new list for all. And no
+  // h has grown past the allowance.
+  const std::size_t n = s.size();
+  if (x_.size() != s.x.size() || par.rebuildEveryStep)
+    return false;
+  const bool xs = !dx.empty();
+  std::vector<double>& D = moved_;
+  D.assign(n, 0.0);
+  double dAll = 0.0;
+  bool hOk = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (out_[i]) {
+      if (!outsideDomain(s, par, i))
+        return false; // back in the domain: it needs neighbours
+      continue;
+    }
+    double moved2 = 0.0, v2 = 0.0, a2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double d = s.x[3 * i + k] - x_[3 * i + k];
+      // A particle wrapped through a periodic face since the build: its listed pairs carry
+      // the image codes of the old side.
+      if (par.periodic[k] && std::abs(d) > 0.5 * (par.boxHi[k] - par.boxLo[k]))
+        return false;
+      moved2 += d * d;
+      const double w = s.v[3 * i + k] + (xs ? dx[3 * i + k] : 0.0);
+      v2 += w * w;
+      if (dv.size() == s.v.size())
+        a2 += dv[3 * i + k] * dv[3 * i + k];
+    }
+    // Motion still to come in the step: speed, with a margin, and what the acceleration adds.
+    D[i] = std::sqrt(moved2) + 1.5 * dt * std::sqrt(v2) + dt * dt * std::sqrt(a2);
+    dAll = std::max(dAll, D[i]);
+    hOk = hOk && s.h[i] <= 0.98 * grow_ * h_[i]; // room for the growth within this step
+  }
+  if (!hOk)
+    return false;
+  // A pair (a, b) is safe while D_a + D_b stays below the larger of their margins: so if both
+  // have moved less than half their own. Those that have not are checked against every level
+  // of h (its two largest D and smallest margin): against the largest D but their own. With
+  // one margin for all this is "the two largest D below the margin".
+  const std::size_t L = levels_;
+  std::array<double, kMaxLevels> d1{}, d2{}, muMin;
+  std::array<std::size_t, kMaxLevels> top;
+  muMin.fill(INFINITY);
+  top.fill(n);
+  auto excluded = [&](std::size_t i) { return out_[i] || D[i] + dAll < clearance_[i]; };
+  for (std::size_t i = 0; i < n; ++i) {
+    if (excluded(i))
+      continue;
+    const std::size_t l = level_[i];
+    if (D[i] > d1[l]) {
+      d2[l] = d1[l], d1[l] = D[i], top[l] = i;
+    } else if (D[i] > d2[l]) {
+      d2[l] = D[i];
+    }
+    muMin[l] = std::min(muMin[l], margin_[i]);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (excluded(i) || D[i] < 0.5 * margin_[i])
+      continue;
+    for (std::size_t l = 0; l < L; ++l)
+      if (muMin[l] < INFINITY &&
+          D[i] + (top[l] == i ? d2[l] : d1[l]) >= std::max(margin_[i], muMin[l]))
+        return false;
+  }
+  return true;
+}
+
+// Sparse grids: cells of half the level's reach, keyed (z, y, x) in 64 bits and sorted, so
+// memory and cost do not depend on how far ejecta have flown (a dense grid over a spray
+// kilometres wide would have to coarsen its cells for everyone). Candidate positions are
+// copied in (level, cell) order, so a scan reads memory sequentially.
+struct NeighbourList::Grids {
+  static constexpr std::int64_t kAxis = (std::int64_t(1) << 21) - 1;
+  int levels = 1;
+  double grow = 1.0;
+  std::vector<double> levelH, levelMu; // each level's largest h and largest margin
+  std::vector<std::size_t> levelSize;  // each level's range in the sorted arrays
+  std::vector<double> cellSize;
+  double lo[3] = {INFINITY, INFINITY, INFINITY};
+  std::vector<double> spx, spy, spz, sh, smu; // positions, h and margins in (level, cell) order
+  std::vector<std::uint32_t> sid;
+  std::vector<std::int64_t> cellKey;    // distinct cells, ascending per level
+  std::vector<std::uint32_t> cellStart; // their first entry in the sorted arrays, plus the end
+  std::vector<std::size_t> levelCells;  // each level's range in cellKey
+
+  Grids(const SphState& s, const std::vector<double>& pos, const std::vector<std::uint32_t>& id,
+        const std::vector<std::uint8_t>& particleLevel, int levelCount,
+        const std::vector<double>& mu, double growth);
+  std::int64_t coord(double v, int k, int l) const {
+    return static_cast<std::int64_t>(
+        std::clamp(std::floor((v - lo[k]) / cellSize[static_cast<std::size_t>(l)]), 0.0,
+                   static_cast<double>(kAxis)));
+  }
+  static std::int64_t key(std::int64_t cx, std::int64_t cy, std::int64_t cz) {
+    return (cz << 42) | (cy << 21) | cx;
+  }
+  bool empty(int l) const {
+    return levelSize[static_cast<std::size_t>(l)] == levelSize[static_cast<std::size_t>(l) + 1];
+  }
+  // Calls f(begin, end) for the sorted entries of level l in the cells within R of x.
+  template <class F> void forCells(const double* x, double R, int l, F&& f) const {
+    if (empty(l))
+      return;
+    std::int64_t c0[3], c1[3];
+    for (int k = 0; k < 3; ++k) {
+      c0[k] = coord(x[k] - R, k, l);
+      c1[k] = coord(x[k] + R, k, l);
+    }
+    const auto first =
+        cellKey.begin() + static_cast<std::ptrdiff_t>(levelCells[static_cast<std::size_t>(l)]);
+    const auto end =
+        cellKey.begin() + static_cast<std::ptrdiff_t>(levelCells[static_cast<std::size_t>(l) + 1]);
+    for (std::int64_t cz = c0[2]; cz <= c1[2]; ++cz)
+      for (std::int64_t cy = c0[1]; cy <= c1[1]; ++cy) {
+        // The row's cells are contiguous in key order: one search for its first.
+        auto it = std::lower_bound(first, end, key(c0[0], cy, cz));
+        const std::int64_t last = key(c1[0], cy, cz);
+        auto stop = it;
+        while (stop != end && *stop <= last)
+          ++stop;
+        if (stop != it)
+          f(cellStart[static_cast<std::size_t>(it - cellKey.begin())],
+            cellStart[static_cast<std::size_t>(stop - cellKey.begin())]);
+      }
+  }
+};
+
+NeighbourList::Grids::Grids(const SphState& s, const std::vector<double>& pos,
+                            const std::vector<std::uint32_t>& id,
+                            const std::vector<std::uint8_t>& particleLevel, int levelCount,
+                            const std::vector<double>& mu, double growth)
+    : levels(levelCount), grow(growth) {
+  const std::size_t m = id.size();
+  std::vector<std::uint8_t> level(m);
+  levelH.assign(static_cast<std::size_t>(levels), 0.0);
+  levelMu.assign(static_cast<std::size_t>(levels), 0.0);
+  levelSize.assign(static_cast<std::size_t>(levels) + 1, 0);
+  for (std::size_t q = 0; q < m; ++q) {
+    const double h = s.h[id[q] / 32];
+    const int l = particleLevel[id[q] / 32];
+    level[q] = static_cast<std::uint8_t>(l);
+    levelH[static_cast<std::size_t>(l)] = std::max(levelH[static_cast<std::size_t>(l)], h);
+    levelMu[static_cast<std::size_t>(l)] =
+        std::max(levelMu[static_cast<std::size_t>(l)], mu[id[q] / 32]);
+    ++levelSize[static_cast<std::size_t>(l) + 1];
+  }
+  cellSize.resize(static_cast<std::size_t>(levels));
+  for (int l = 0; l < levels; ++l)
+    cellSize[static_cast<std::size_t>(l)] =
+        0.5 * (grow * levelH[static_cast<std::size_t>(l)] + levelMu[static_cast<std::size_t>(l)]);
+  for (std::size_t q = 0; q < m; ++q)
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(pos[3 * q + k]))
+        throw std::runtime_error("SPH: particle " + std::to_string(id[q] / 32) +
+                                 " has a non-finite position");
+      lo[k] = std::min(lo[k], pos[3 * q + k]);
+    }
+  for (int l = 0; l < levels; ++l)
+    levelSize[static_cast<std::size_t>(l) + 1] += levelSize[static_cast<std::size_t>(l)];
+  std::vector<std::pair<std::int64_t, std::uint32_t>> order(m);
+  {
+    std::vector<std::size_t> at(levelSize.begin(), levelSize.end() - 1);
+    for (std::size_t q = 0; q < m; ++q) {
+      const int l = level[q];
+      order[at[static_cast<std::size_t>(l)]++] = {
+          key(coord(pos[3 * q], 0, l), coord(pos[3 * q + 1], 1, l), coord(pos[3 * q + 2], 2, l)),
+          static_cast<std::uint32_t>(q)};
+    }
+  }
+  for (int l = 0; l < levels; ++l)
+    std::sort(order.begin() + static_cast<std::ptrdiff_t>(levelSize[static_cast<std::size_t>(l)]),
+              order.begin() +
+                  static_cast<std::ptrdiff_t>(levelSize[static_cast<std::size_t>(l) + 1]));
+  spx.resize(m), spy.resize(m), spz.resize(m), sh.resize(m), smu.resize(m);
+  sid.resize(m);
+  levelCells.assign(static_cast<std::size_t>(levels) + 1, 0);
+  for (int l = 0; l < levels; ++l) {
+    for (std::size_t r = levelSize[static_cast<std::size_t>(l)];
+         r < levelSize[static_cast<std::size_t>(l) + 1]; ++r) {
+      const std::uint32_t q = order[r].second;
+      spx[r] = pos[3 * q], spy[r] = pos[3 * q + 1], spz[r] = pos[3 * q + 2];
+      sid[r] = id[q];
+      sh[r] = s.h[id[q] / 32];
+      smu[r] = mu[id[q] / 32];
+      if (r == levelSize[static_cast<std::size_t>(l)] || order[r].first != order[r - 1].first) {
+        cellKey.push_back(order[r].first);
+        cellStart.push_back(static_cast<std::uint32_t>(r));
+      }
+    }
+    levelCells[static_cast<std::size_t>(l) + 1] = cellKey.size();
+  }
+  cellStart.push_back(static_cast<std::uint32_t>(m));
+}
+
+void NeighbourList::build(const SphState& s, const SphParams& par, const std::vector<double>& dx,
+                          double dt, bool margins) {
+  double hmax = 0.0, hmin = INFINITY, muMax = 0.0;
+  setMargins(s, par, dx, dt, margins, hmax, hmin, muMax);
+  const double grow = 1.05; // h may grow this much before the list misses a pair
+  const double reach = grow * hmax + muMax;
+  x_ = s.x;
+  h_ = s.h;
+  grow_ = grow;
+  std::vector<double> pos;
+  std::vector<std::uint32_t> id;
+  gatherCandidates(s, par, out_, reach, pos, id);
+  setLevels(s, hmax, hmin);
+  const Grids grids(s, pos, id, level_, static_cast<int>(levels_), margin_, grow);
+  listAll(grids, s, par, reach, margins);
+}
+
+void NeighbourList::setMargins(const SphState& s, const SphParams& par,
+                               const std::vector<double>& dx, double dt, bool margins, double& hmax,
+                               double& hmin, double& muMax) {
+  const std::size_t n = s.size();
+  out_.assign(n, 0);
+  margin_.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    out_[i] = outsideDomain(s, par, i);
+    if (!out_[i]) {
+      hmax = std::max(hmax, s.h[i]);
+      hmin = std::min(hmin, s.h[i]);
+      // Each particle's own: skin h, or for a fast one 16 steps of its motion (at most h/2), so
+      // that its list lasts about 6 steps. In a graded target a coarse particle's list then
+      // lasts as long as a fine one's, and a few fast ones do not force new lists for all.
+      // (One margin for all, set by the finest h and the fastest particle, made every list of
+      // a late-stage graded run last a step.)
+      if (margins) {
+        double w2 = 0.0;
+        for (int k = 0; k < 3; ++k) {
+          const double w = s.v[3 * i + k] + (dx.size() == s.v.size() ? dx[3 * i + k] : 0.0);
+          w2 += w * w;
+        }
+        margin_[i] = std::max(par.skin * s.h[i], std::min(16.0 * dt * std::sqrt(w2), 0.5 * s.h[i]));
+      }
+      muMax = std::max(muMax, margin_[i]);
+    }
+  }
+}
+
+// Levels of smoothing length, a factor of √2 apart (level 0 holds the largest h). With one
+// grid sized by the largest h, a graded target (h ten times larger at its edge than at the
+// impact point) or a spray of expanded ejecta would make every fine particle scan a thousand
+// times its own neighbourhood. Each level has its own grid; a particle scans its own level
+// and the coarser ones (cells sized for them, so a few per axis), and the pairs with finer
+// particles reach it from their side: the finer partner lists the pair and hands it over.
+// The pairs are those of one grid: r below grow max(h_a, h_b) plus the larger margin.
+void NeighbourList::setLevels(const SphState& s, double hmax, double hmin) {
+  const std::size_t n = s.size();
+  int levels = 1;
+  if (hmax > std::sqrt(2.0) * hmin)
+    levels = std::min(kMaxLevels, 1 + static_cast<int>(std::floor(2.0 * std::log2(hmax / hmin))));
+  auto levelOf = [&](double h) {
+    return levels == 1
+               ? 0
+               : std::clamp(static_cast<int>(std::floor(2.0 * std::log2(hmax / h))), 0, levels - 1);
+  };
+  levels_ = static_cast<std::size_t>(levels);
+  level_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    level_[i] = static_cast<std::uint8_t>(levelOf(s.h[i]));
+}
+
+// Lists a's neighbours in its own and the coarser levels (the pairs with coarser ones also
+// into `handed`, as entries of the partner's list); true if an unlisted particle came within
+// twice the margin.
+bool NeighbourList::visit(const Grids& g, const SphState& s, std::size_t a,
+                          std::vector<std::uint32_t>& out, std::vector<Handed>& handed,
+                          std::vector<std::uint8_t>& keep) const {
+  bool nearMiss = false;
+  const double grow = g.grow;
+  const double* xa = &s.x[3 * a];
+  const double ha = s.h[a], ma = margin_[a];
+  const int la = level_[a];
+  const std::uint32_t self = static_cast<std::uint32_t>(a * 32 + kNoShift);
+  for (int l = 0; l <= la; ++l) {
+    const double R = grow * std::max(ha, g.levelH[static_cast<std::size_t>(l)]) +
+                     std::max(ma, g.levelMu[static_cast<std::size_t>(l)]);
+    g.forCells(xa, R, l, [&](std::uint32_t begin, std::uint32_t end) {
+      // The candidates' tests in one vector pass, then the list advances past those in
+      // range (branch-free: every candidate is written).
+      const std::uint32_t count = end - begin;
+      if (keep.size() < count)
+        keep.resize(count);
+      const CandidateRange cr{g.spx.data() + begin,
+                              g.spy.data() + begin,
+                              g.spz.data() + begin,
+                              g.sh.data() + begin,
+                              g.smu.data() + begin,
+                              g.sid.data() + begin,
+                              count};
+      nearMiss |= listCandidates(cr, xa, ha, ma, grow, self, keep.data());
+      std::size_t at = out.size();
+      out.resize(at + count);
+      std::uint32_t* o = out.data();
+      for (std::uint32_t k = 0; k < count; ++k) {
+        o[at] = g.sid[begin + k];
+        at += keep[k];
+      }
+      out.resize(at);
+      if (l < la) // b's image at the opposite shift is near a
+        for (std::uint32_t k = 0; k < count; ++k)
+          if (keep[k]) {
+            const std::uint32_t e = g.sid[begin + k];
+            handed.push_back({e / 32, static_cast<std::uint32_t>(a * 32 + (26 - e % 32))});
+          }
+    });
+  }
+  return nearMiss;
+}
+
+// A particle with no unlisted particle within twice the margin gets its clearance: how far
+// the nearest unlisted particle is beyond the pair's listing range without the margin. Each
+// level is searched to twice its reach from a (the finer ones to three margins beyond a's
+// own range, unless that spans too many of their cells); anybody farther has at least that
+// search radius minus the level's largest range to spare.
+double NeighbourList::clearanceOf(const Grids& g, const SphState& s, const SphParams& par,
+                                  std::size_t a, double far) const {
+  const double grow = g.grow;
+  const double* xa = &s.x[3 * a];
+  for (int k = 0; k < 3; ++k) // periodic images are listed only within one reach of the box
+    if (par.periodic[k] && (xa[k] < par.boxLo[k] + far || xa[k] > par.boxHi[k] - far))
+      return 0.0;
+  const double ha = s.h[a], ma = margin_[a];
+  const int la = level_[a];
+  double spare = INFINITY;
+  for (int l = 0; l < g.levels; ++l) {
+    if (g.empty(l))
+      continue;
+    const double range = grow * std::max(ha, g.levelH[static_cast<std::size_t>(l)]);
+    const double ml = std::max(ma, g.levelMu[static_cast<std::size_t>(l)]);
+    const double R = l <= la ? 2.0 * (range + ml) : range + 3.0 * ml;
+    if (R >
+        8.0 * g.cellSize[static_cast<std::size_t>(l)]) { // a level far finer than a: too many cells
+      spare = std::min(spare, ma); // to search; every unlisted pair has a's margin
+      continue;
+    }
+    spare = std::min(spare, R - range);
+    g.forCells(xa, R, l, [&](std::uint32_t begin, std::uint32_t end) {
+      for (std::uint32_t r = begin; r < end; ++r) {
+        const std::uint32_t e = g.sid[r];
+        if (e / 32 == a && e % 32 == kNoShift)
+          continue;
+        const double d = std::sqrt((xa[0] - g.spx[r]) * (xa[0] - g.spx[r]) +
+                                   (xa[1] - g.spy[r]) * (xa[1] - g.spy[r]) +
+                                   (xa[2] - g.spz[r]) * (xa[2] - g.spz[r]));
+        const double pairRange = grow * std::max(ha, g.sh[r]);
+        if (d >= pairRange + std::max(ma, g.smu[r])) // listed ones are not spare
+          spare = std::min(spare, d - pairRange);
+      }
+    });
+  }
+  return std::max(spare, ma); // unlisted: at least a's margin
+}
+
+// One pass: each thread lists a contiguous block of particles into its own buffer (in the
+// grids' order, the same for any thread count), then the blocks are copied into place and
+// the pairs handed over from finer particles are appended to their partners' lists, in the
+// order of the finer particles (again the same for any thread count).
+void NeighbourList::listAll(const Grids& g, const SphState& s, const SphParams& par, double reach,
+                            bool margins) {
+  const std::size_t n = s.size();
+  // per thread: which candidates are listed
+  std::vector<std::vector<std::uint8_t>> keepOf(static_cast<std::size_t>(omp_get_max_threads()));
+  const double far = 4.0 * reach;
+  ++builds_;
+  start_.assign(n + 1, 0);
+  clearance_.assign(n, 0.0);
+  const int threads = n >= 1024 ? omp_get_max_threads() : 1;
+  std::vector<std::vector<std::uint32_t>> buffers(static_cast<std::size_t>(threads));
+  std::vector<std::vector<Handed>> handedBy(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()),
+                      nt = static_cast<std::size_t>(omp_get_num_threads());
+    const std::size_t a0 = n * t / nt, a1 = n * (t + 1) / nt;
+    std::vector<std::uint32_t>& out = buffers[t];
+    std::vector<Handed>& handed = handedBy[t];
+    std::vector<std::uint8_t>& keep = keepOf[static_cast<std::size_t>(omp_get_thread_num())];
+    out.clear();
+    handed.clear();
+    for (std::size_t a = a0; a < a1; ++a) {
+      const std::size_t before = out.size();
+      if (!out_[a]) {
+        if (!visit(g, s, a, out, handed, keep) &&
+            margins) // with no margin the list is rebuilt at once anyway
+          clearance_[a] = clearanceOf(g, s, par, a, far);
+      }
+      start_[a + 1] = static_cast<std::uint32_t>(out.size() - before);
+    }
+  }
+  std::size_t total = 0;
+  for (const auto& b : buffers)
+    total += b.size();
+  for (const auto& h : handedBy)
+    total += h.size();
+  if (total > 0xF0000000u)
+    throw std::runtime_error(
+        "SPH: too many neighbour pairs (the smoothing lengths have grown too large)");
+  std::vector<std::uint32_t> own(start_.begin() + 1, start_.end());
+  for (const auto& h : handedBy)
+    for (const Handed& p : h)
+      ++start_[p.to + 1];
+  for (std::size_t a = 0; a < n; ++a)
+    start_[a + 1] += start_[a];
+  entry_.resize(total);
+  // Own entries: the buffers, read in thread order, hold them in ascending a. Then `own`
+  // counts on as each list's fill.
+  std::size_t bi = 0, k = 0;
+  for (std::size_t a = 0; a < n; ++a) {
+    if (own[a] == 0)
+      continue;
+    while (k == buffers[bi].size())
+      ++bi, k = 0;
+    std::copy(buffers[bi].begin() + static_cast<std::ptrdiff_t>(k),
+              buffers[bi].begin() + static_cast<std::ptrdiff_t>(k + own[a]),
+              entry_.begin() + static_cast<std::ptrdiff_t>(start_[a]));
+    k += own[a];
+  }
+  for (const auto& h : handedBy)
+    for (const Handed& p : h)
+      entry_[start_[p.to] + own[p.to]++] = p.entry;
+}
+
+std::vector<std::uint32_t> NeighbourList::sortedOf(std::size_t a) const {
+  std::vector<std::uint32_t> list(entry_.begin() + start_[a], entry_.begin() + start_[a + 1]);
+  std::sort(list.begin(), list.end());
+  return list;
+}
+
+} // namespace craterkit

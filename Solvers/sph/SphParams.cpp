@@ -1,0 +1,48 @@
+#include "sph/SphParams.h"
+
+#include "common/Error.h"
+
+#include <cmath>
+
+namespace craterkit {
+
+void SphParams::validate() const {
+  if (materials.empty())
+    throw InputError("SPH: no material");
+  if (!(alpha >= 0.0) || !(beta >= 0.0) || !std::isfinite(alpha) || !std::isfinite(beta))
+    throw InputError("SPH: artificial viscosity alpha and beta must be finite and not negative");
+  if (!(xsph >= 0.0 && xsph <= 1.0))
+    throw InputError("SPH: the XSPH factor must be in [0, 1]");
+  if (!(kappa > 1.0 && kappa < 10.0))
+    throw InputError("SPH: kappa (support radius over particle spacing) must be in (1, 10)");
+  if (!(courant > 0.0 && courant <= 1.0))
+    throw InputError("SPH: the Courant number must be in (0, 1]");
+  if (!(densityFloor < 1.0))
+    throw InputError(
+        "SPH: the density floor must be below 1 (a fraction of the reference bulk density)");
+  if (!(forceFactor > 0.0 && forceFactor <= 1.0))
+    throw InputError("SPH: the force time-step factor must be in (0, 1]");
+  if (!(errorTolerance > 0.0 && errorTolerance <= 1.0))
+    throw InputError("SPH: the error tolerance must be in (0, 1]");
+  if (!(minTimeStep >= 0.0))
+    throw InputError("SPH: the time-step floor must not be negative");
+  if (!(maxSmoothingGrowth == 0.0 ||
+        (maxSmoothingGrowth >= 1.0 && std::isfinite(maxSmoothingGrowth))))
+    throw InputError("SPH: the smoothing-length growth cap must be 0 (none) or at least 1");
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(gravity[k]) || !std::isfinite(pointMassAt[k]))
+      throw InputError("SPH: gravity must be finite");
+    if (periodic[k] && !(boxHi[k] > boxLo[k]))
+      throw InputError("SPH: a periodic axis needs boxHi > boxLo");
+  }
+  if (!(pointMassGM >= 0.0) || !std::isfinite(pointMassGM))
+    throw InputError("SPH: the point mass GM must be finite and not negative");
+  if (!(domainRadius >= 0.0) || !std::isfinite(domainRadius))
+    throw InputError("SPH: the domain radius must be finite and not negative (0: no limit)");
+  if (!std::isfinite(lateStageTime))
+    throw InputError("SPH: the late-stage time must be finite (negative: no late stage)");
+  if (lateStageTime >= 0.0 && !(lateStageSoundSpeed > 0.0 && std::isfinite(lateStageSoundSpeed)))
+    throw InputError("SPH: the late-stage sound speed must be positive");
+}
+
+} // namespace craterkit

@@ -1,0 +1,63 @@
+// Parameters of the SPH solver (PHYSICS.md §2): kernel, materials, artificial viscosity
+// (§2.3), XSPH, smoothing length, density floor, time-step control (§2.8), neighbour-list
+// skin, gravity, periodic box, the late-stage scheme (§2.8) and the domain that ejecta leave.
+#pragma once
+
+#include "sph/Material.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace craterkit {
+
+struct SphParams {
+  enum class Kernel { CubicSpline, WendlandC2 } kernel = Kernel::CubicSpline;
+  std::vector<Material> materials; // indexed by SphState::material
+  double alpha = 1.0, beta = 2.0;  // artificial viscosity
+  double xsph = 0.0;               // XSPH ε (0: off)
+  double kappa = 2.5;              // h = κ (m/ρ)^{1/3}
+  // h grows at most to this multiple of its value at the material's reference bulk density
+  // (ρ0/α0; solids only, 0: no cap). Without it a spray of expanding ejecta gets ever larger
+  // h, which sizes the neighbour cells for everyone and forces a new list every step.
+  double maxSmoothingGrowth = 2.0;
+  // The integrated density of a particle whose material has a reference density (Tillotson,
+  // Murnaghan, stiffened gas; not the ideal gas) is held at or above this fraction of the
+  // material's reference bulk density ρ0/α0 (negative: 1/maxSmoothingGrowth³, where h stops
+  // growing, at most 1/2; 0: no floor). A state that starts below it is raised to it at the
+  // first step. Dilated material (a cohesionless bed torn apart, p = 0) otherwise keeps
+  // losing density while it moves against its neighbours, without bound: its volume m/ρ then
+  // dominates the neighbours' velocity gradients, and at last its density goes negative.
+  double densityFloor = -1.0;
+  double courant = 0.3;
+  double forceFactor = 0.2;       // Δt ≤ forceFactor sqrt(h / |a|)
+  std::uint64_t fractureSeed = 1; // random assignment of Grady–Kipp flaws to particles
+  double skin =
+      0.15; // each particle's neighbour-list margin, in units of its h (fast ones get more)
+  bool rebuildEveryStep =
+      false; // no list kept over steps (to check that keeping them changes nothing)
+  double errorTolerance =
+      0.02; // largest relative Euler–Heun difference of a step (else retaken shorter)
+  double minTimeStep = 0.0;      // a step below this stops the run (0: only a non-positive step)
+  bool summationDensity = false; // ρ = Σ m W (gases) instead of the integrated continuity equation
+  double gravity[3] = {0, 0, 0}; // uniform, m/s²
+  double pointMassGM = 0.0;      // m³/s², a point mass at pointMassAt (0: none)
+  double pointMassAt[3] = {0, 0, 0};
+  bool periodic[3] = {false, false, false};
+  double boxLo[3] = {0, 0, 0}, boxHi[3] = {1, 1, 1}; // the periodic cell
+  // Late-stage scheme (after Raducan & Jutzi 2022; PHYSICS.md §2.8): at lateStageTime (negative:
+  // never) every Tillotson or Murnaghan material switches to the linear p = K (α ρ / ρ0 − 1) / α
+  // with K = ρ0 c², c = lateStageSoundSpeed, keeping its Poisson ratio (so G falls by the same
+  // factor, and each particle's deviatoric stress is scaled by it: the elastic strain is
+  // unchanged); the distention is frozen. The Courant step grows by about the ratio of the old and
+  // new sound speeds, so a run can follow the slow, gravity-driven crater growth after the shock.
+  double lateStageTime = -1.0; // s
+  // Particles farther than domainRadius from domainCentre (0: no limit) have left the SPH
+  // domain: they get no neighbours and fly ballistically (under gravity) until they return,
+  // so fast ejecta neither widen the neighbour lists nor force a new list every step.
+  double domainRadius = 0.0; // m
+  double domainCentre[3] = {0, 0, 0};
+  double lateStageSoundSpeed = 100.0; // m/s
+  void validate() const;
+};
+
+} // namespace craterkit
