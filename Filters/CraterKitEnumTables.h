@@ -7,7 +7,7 @@
 // Plain C++ (no VTK): the unit tests include it without ParaView.
 #pragma once
 
-#include "bed/Container.h"
+#include "common/Container.h"
 #include "bed/GranularBed.h"
 #include "bed/SizeDistribution.h"
 #include "common/Error.h"

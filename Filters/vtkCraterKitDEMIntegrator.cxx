@@ -4,7 +4,7 @@
 #include "vtkCraterKitSolverBridge.h"
 
 #include "dem/DemRun.h"
-#include "dem/Impactor.h"
+#include "dem/DemSetup.h"
 
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -42,32 +42,8 @@ int vtkCraterKitDEMIntegrator::RequestInformation(vtkInformation*,
 void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input) {
   using namespace craterkit;
   vtkFieldData* fd = input->GetFieldData();
-  ParticleSet particles = bridge::fromPolyData(input);
-  const double start = bridge::fieldScalar(fd, "Time", 0.0);
-
-  double zmin = VTK_DOUBLE_MAX, top = -VTK_DOUBLE_MAX, rmin = VTK_DOUBLE_MAX,
-         rhoMin = VTK_DOUBLE_MAX;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    zmin = std::min(zmin, particles.position[3 * i + 2] - particles.radius[i]);
-    top = std::max(top, particles.position[3 * i + 2] + particles.radius[i]);
-    rmin = std::min(rmin, particles.radius[i]);
-    rhoMin = std::min(rhoMin, particles.density[i]);
-  }
-  double vmax = this->MaxExpectedSpeed;
-  if (this->AddImpactor) {
-    ImpactorParams imp;
-    imp.radius = this->ImpactorRadius;
-    imp.density = this->ImpactorDensity;
-    imp.speed = this->ImpactSpeed;
-    imp.angle = this->ImpactAngle;
-    imp.target[2] = bridge::fieldScalar(fd, "SurfaceHeight", top);
-    addImpactor(particles, imp);
-    vmax = std::max(vmax, this->ImpactSpeed);
-    rmin = std::min(rmin, this->ImpactorRadius);
-  }
-
-  DemParams p;
-  ContactParams& c = p.contact;
+  DemSetup setup;
+  ContactParams& c = setup.contact;
   c.normalModel = std::string(enums::kContactLaw.toSolver(this->ContactLaw));
   c.kT = this->TangentialStiffness;
   c.restitutionN = this->NormalRestitution;
@@ -79,69 +55,44 @@ void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input) {
   c.cohesion = this->Cohesion;
   c.youngsModulus = this->YoungsModulus;
   c.poissonRatio = this->PoissonRatio;
-  p.overlapWarning = this->MaxOverlap;
-
-  Gravity& g = p.gravity;
+  setup.normalStiffness = this->NormalStiffness;
+  setup.timeStep = this->TimeStep;
+  setup.stepsPerCollision = this->StepsPerCollision;
+  setup.maxExpectedSpeed = this->MaxExpectedSpeed;
+  setup.maxOverlap = this->MaxOverlap;
+  Gravity& g = setup.gravity;
   g.type = enums::kGravityModel.toSolver(this->GravityModel);
   std::copy(this->SurfaceGravity, this->SurfaceGravity + 3, g.vector.begin());
   g.GM = this->PointMassGM;
   std::copy(this->PointMassCentre, this->PointMassCentre + 3, g.centre.begin());
-  double gmag = 0.0;
-  if (g.type == Gravity::Type::Uniform)
-    gmag = std::sqrt(g.vector[0] * g.vector[0] + g.vector[1] * g.vector[1] +
-                     g.vector[2] * g.vector[2]);
-  else if (g.type == Gravity::Type::PointMass) {
-    const double d = std::hypot(g.centre[0], g.centre[1], g.centre[2] - top);
-    gmag = d > 0.0 ? g.GM / (d * d) : 0.0;
-  }
+  setup.addImpactor = this->AddImpactor != 0;
+  setup.impactor = ImpactorParams{this->ImpactorRadius, this->ImpactorDensity, this->ImpactSpeed,
+                                  this->ImpactAngle};
+  setup.surfaceHeight = bridge::fieldScalar(fd, "SurfaceHeight", std::nan(""));
 
-  // Stiffness and time step: given, or proposed from the largest expected speed, the
-  // lithostatic load and the allowed overlap (Schwartz et al. 2012, PHYSICS.md §1.6).
-  const StiffnessProposal proposal =
-      proposeStiffness(rmin, rhoMin, vmax, this->MaxOverlap, gmag, std::max(top - zmin, rmin),
-                       this->StepsPerCollision);
-  c.kN = this->NormalStiffness > 0.0 ? this->NormalStiffness : proposal.kN;
-  if (this->TimeStep > 0.0)
-    p.dt = this->TimeStep;
-  else {
-    const double mmin = rhoMin * 4.0 / 3.0 * M_PI * rmin * rmin * rmin;
-    p.dt = M_PI * std::sqrt(0.5 * mmin / c.kN) / this->StepsPerCollision;
-  }
-
-  craterkit::Container container;
+  craterkit::Container& box = setup.container;
+  box.bowlRadius = this->ContainerRadius;
+  box.boxSize = {this->BoxSize[0], this->BoxSize[1], this->BoxSize[2]};
   const enums::DemContainer walls = enums::kDemContainer.toSolver(this->Container);
-  switch (walls) {
-  case enums::DemContainer::FromInput: {
-    const std::string type = bridge::fieldString(fd, "ContainerType");
-    if (type == "Box" || type == "Bowl") {
-      container.type =
-          type == "Box" ? craterkit::Container::Type::Box : craterkit::Container::Type::Bowl;
-      container.bowlRadius = bridge::fieldScalar(fd, "ContainerRadius", this->ContainerRadius);
-      vtkDataArray* box = fd->GetArray("BoxSize");
-      for (int k = 0; k < 3; ++k)
-        container.boxSize[k] =
-            box && box->GetNumberOfComponents() == 3 ? box->GetComponent(0, k) : this->BoxSize[k];
-      p.walls = containerWalls(container);
-    }
-    break;
+  std::string type = walls == enums::DemContainer::Box    ? "Box"
+                     : walls == enums::DemContainer::Bowl ? "Bowl"
+                                                          : "";
+  if (walls == enums::DemContainer::FromInput) {
+    type = bridge::fieldString(fd, "ContainerType");
+    box.bowlRadius = bridge::fieldScalar(fd, "ContainerRadius", this->ContainerRadius);
+    vtkDataArray* size = fd->GetArray("BoxSize");
+    for (int k = 0; k < 3 && size && size->GetNumberOfComponents() == 3; ++k)
+      box.boxSize[k] = size->GetComponent(0, k);
   }
-  case enums::DemContainer::Box:
-  case enums::DemContainer::Bowl:
-    container.type = walls == enums::DemContainer::Box ? craterkit::Container::Type::Box
-                                                       : craterkit::Container::Type::Bowl;
-    container.bowlRadius = this->ContainerRadius;
-    container.boxSize = {this->BoxSize[0], this->BoxSize[1], this->BoxSize[2]};
-    p.walls = containerWalls(container);
-    break;
-  case enums::DemContainer::Cylinder:
-    p.walls.push_back(Wall::cylinder({0, 0, 0}, {0, 0, 1}, this->ContainerRadius));
-    p.walls.push_back(Wall::plane({0, 0, -this->BoxSize[2]}, {0, 0, 1}));
-    break;
-  default:
-    break;
-  }
+  if (type == "Box" || type == "Bowl") {
+    setup.walls = DemSetup::Walls::Container;
+    box.type = type == "Box" ? craterkit::Container::Type::Box : craterkit::Container::Type::Bowl;
+  } else if (walls == enums::DemContainer::Cylinder)
+    setup.walls = DemSetup::Walls::Cylinder;
 
-  this->Run = std::make_unique<DemRun>(particles, p, start,
+  const DemProblem problem = setUpDem(bridge::fromPolyData(input), setup);
+  this->Run = std::make_unique<DemRun>(problem.particles, problem.params,
+                                       bridge::fieldScalar(fd, "Time", 0.0),
                                        static_cast<std::size_t>(std::max(0, this->KeptStates)));
   if (this->ResumeFromCheckpoint && !this->CheckpointFile.empty() &&
       std::ifstream(this->CheckpointFile).good())
@@ -208,41 +159,24 @@ int vtkCraterKitDEMIntegrator::RequestData(vtkInformation*, vtkInformationVector
 
 void vtkCraterKitDEMIntegrator::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "ContactLaw: " << this->ContactLaw << "\n";
-  os << indent << "NormalStiffness: " << this->NormalStiffness << "\n";
-  os << indent << "TangentialStiffness: " << this->TangentialStiffness << "\n";
-  os << indent << "NormalRestitution: " << this->NormalRestitution << "\n";
-  os << indent << "TangentialRestitution: " << this->TangentialRestitution << "\n";
-  os << indent << "StaticFriction: " << this->StaticFriction << "\n";
-  os << indent << "RollingFriction: " << this->RollingFriction << "\n";
-  os << indent << "TwistingFriction: " << this->TwistingFriction << "\n";
-  os << indent << "ShapeParameter: " << this->ShapeParameter << "\n";
-  os << indent << "Cohesion: " << this->Cohesion << "\n";
-  os << indent << "YoungsModulus: " << this->YoungsModulus << "\n";
-  os << indent << "PoissonRatio: " << this->PoissonRatio << "\n";
-  os << indent << "MaxExpectedSpeed: " << this->MaxExpectedSpeed << "\n";
-  os << indent << "MaxOverlap: " << this->MaxOverlap << "\n";
-  os << indent << "Container: " << this->Container << "\n";
-  os << indent << "ContainerRadius: " << this->ContainerRadius << "\n";
-  os << indent << "BoxSize: " << this->BoxSize[0] << " " << this->BoxSize[1] << " "
-     << this->BoxSize[2] << "\n";
-  os << indent << "GravityModel: " << this->GravityModel << "\n";
-  os << indent << "SurfaceGravity: " << this->SurfaceGravity[0] << " " << this->SurfaceGravity[1]
-     << " " << this->SurfaceGravity[2] << "\n";
-  os << indent << "PointMassGM: " << this->PointMassGM << "\n";
-  os << indent << "PointMassCentre: " << this->PointMassCentre[0] << " " << this->PointMassCentre[1]
-     << " " << this->PointMassCentre[2] << "\n";
-  os << indent << "TimeStep: " << this->TimeStep << "\n";
-  os << indent << "StepsPerCollision: " << this->StepsPerCollision << "\n";
-  os << indent << "EndTime: " << this->EndTime << "\n";
-  os << indent << "OutputInterval: " << this->OutputInterval << "\n";
-  os << indent << "AddImpactor: " << this->AddImpactor << "\n";
-  os << indent << "ImpactorRadius: " << this->ImpactorRadius << "\n";
-  os << indent << "ImpactorDensity: " << this->ImpactorDensity << "\n";
-  os << indent << "ImpactSpeed: " << this->ImpactSpeed << "\n";
-  os << indent << "ImpactAngle: " << this->ImpactAngle << "\n";
-  os << indent << "CheckpointFile: " << this->CheckpointFile << "\n";
-  os << indent << "CheckpointInterval: " << this->CheckpointInterval << "\n";
-  os << indent << "ResumeFromCheckpoint: " << this->ResumeFromCheckpoint << "\n";
-  os << indent << "KeptStates: " << this->KeptStates << "\n";
+  // One "Name: value" line per property, with the XML property names: the proxy test
+  // compares these C++ defaults with the XML defaults.
+  const auto line = [&](const char* name, const auto& v) {
+    os << indent << name << ": " << v << "\n";
+  };
+  const auto vec = [&](const char* name, const double* v) {
+    os << indent << name << ": " << v[0] << " " << v[1] << " " << v[2] << "\n";
+  };
+#define CK_LINE(name) line(#name, this->name)
+  CK_LINE(ContactLaw), CK_LINE(NormalStiffness), CK_LINE(TangentialStiffness);
+  CK_LINE(NormalRestitution), CK_LINE(TangentialRestitution), CK_LINE(StaticFriction);
+  CK_LINE(RollingFriction), CK_LINE(TwistingFriction), CK_LINE(ShapeParameter);
+  CK_LINE(Cohesion), CK_LINE(YoungsModulus), CK_LINE(PoissonRatio), CK_LINE(MaxExpectedSpeed);
+  CK_LINE(MaxOverlap), CK_LINE(Container), CK_LINE(ContainerRadius), vec("BoxSize", this->BoxSize);
+  CK_LINE(GravityModel), vec("SurfaceGravity", this->SurfaceGravity), CK_LINE(PointMassGM);
+  vec("PointMassCentre", this->PointMassCentre), CK_LINE(TimeStep), CK_LINE(StepsPerCollision);
+  CK_LINE(EndTime), CK_LINE(OutputInterval), CK_LINE(AddImpactor), CK_LINE(ImpactorRadius);
+  CK_LINE(ImpactorDensity), CK_LINE(ImpactSpeed), CK_LINE(ImpactAngle), CK_LINE(CheckpointFile);
+  CK_LINE(CheckpointInterval), CK_LINE(ResumeFromCheckpoint), CK_LINE(KeptStates);
+#undef CK_LINE
 }

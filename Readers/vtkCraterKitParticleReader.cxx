@@ -2,7 +2,7 @@
 
 #include "vtkCraterKitSolverBridge.h"
 
-#include "dem/DemSolver.h"
+#include "dem/DemCheckpoint.h"
 #include "io/FileBytes.h"
 #include "io/LammpsDump.h"
 #include "io/PkdgravSs.h"
@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <utility>
 
 vtkStandardNewMacro(vtkCraterKitParticleReader);
 
@@ -96,11 +97,11 @@ craterkit::ParticleFrame FrameOfSphCheckpoint(const std::string& path) {
 craterkit::ParticleFrame FrameOfCheckpoint(const std::string& path) {
   if (EndsWith(Lower(path), ".cksph"))
     return FrameOfSphCheckpoint(path);
-  const craterkit::DemSolver solver = craterkit::DemSolver::readCheckpoint(path);
+  craterkit::DemCheckpointState state = craterkit::readDemCheckpointState(path);
   craterkit::ParticleFrame f;
-  f.particles = solver.particles();
-  f.time = solver.time();
-  f.timestep = solver.stepCount();
+  f.particles = std::move(state.particles);
+  f.time = state.time;
+  f.timestep = state.step;
   f.hasVelocity = f.hasAngularVelocity = f.hasRadius = f.hasMass = f.hasDensity = f.hasMaterial =
       f.hasId = true;
   return f;

@@ -324,11 +324,8 @@ def main(argv):
     # half the crater's speed scale sqrt(g D).
     max_speed = max(1.5 * vmax_dem, 0.5 * math.sqrt(args.gravity * d_pi))
     t0 = field_value(dem0, "Time")
-    # The integrator's step (DEMIntegrator: k_N from the smallest particle at this speed and
-    # overlap, 30 steps per collision of two of them).
     r_min = float(vtk_to_numpy(dem0.GetPointData().GetArray("Radius")).min())
-    steps_estimate = dem_time * max_speed * 30.0 / (math.pi * math.sqrt(0.5) * args.max_overlap * r_min)
-    say(f"[4/5] DEM to {t0 + dem_time:.3g} s: about {steps_estimate:.3g} steps of {dem0.GetNumberOfPoints()} particles "
+    say(f"[4/5] DEM to {t0 + dem_time:.3g} s with {dem0.GetNumberOfPoints()} particles "
         f"(stiffness for {max_speed:.3g} m/s and the smallest grain, r = {r_min:.3g} m; the bed's {grain_radius:.3g} m)")
     checkpoint = args.checkpoint or os.path.join(args.output_dir, "dem.ckdem")
     frames = [t0 + dem_time * (k + 1) / args.frames for k in range(args.frames)]
@@ -348,10 +345,16 @@ def main(argv):
         growth = [g for g in json.load(open(growth_file)) if g["time_s"] <= frames[-1]]
         if growth:
             say(f"      resuming after t = {growth[-1]['time_s']:.4g} s ({len(growth)} frames done)")
+    step_told = False
     for t in frames:
         if any(abs(g["time_s"] - t) <= 1e-9 * max(1.0, t) for g in growth):
             continue
         data = fetch_stage(dem, "DEM stage", t)
+        if not step_told:
+            # The integrator's own choice (chooseStiffnessAndStep), read from its output.
+            dt = field_value(data, "TimeStep")
+            say(f"      time step {dt:.3g} s: about {dem_time / dt:.3g} steps in all")
+            step_told = True
         m = crater_measures(profile, t)
         now = totals(data, grain_radius)
         growth.append({"time_s": t, "diameter_m": m["diameter"] if m["found"] else 0.0, "depth_m": m["depth"],

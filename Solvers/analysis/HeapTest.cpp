@@ -2,6 +2,7 @@
 
 #include "analysis/HeapAngle.h"
 #include "bed/GranularBed.h"
+#include "dem/DemSetup.h"
 #include "dem/DemSolver.h"
 
 #include <cmath>
@@ -23,10 +24,10 @@ HeapTestResult runFixedBaseHeap(const ContactParams& contact, double baseInRadii
 
   DemParams p;
   p.contact = contact;
-  const StiffnessProposal k = proposeStiffness(r, rho, 1.0, 0.02, g, height, 30.0);
+  const StiffnessChoice k = chooseStiffnessAndStep({r, rho, 1.0, 0.02, g, height, 30.0});
   p.contact.kN = k.kN;
   p.dt = k.dt;
-  p.gravity.vector = {0, 0, -g};
+  p.gravity = Gravity::downward(g);
   p.walls.push_back(Wall::disk({0, 0, -height}, {0, 0, 1}, base));
   DemSolver solver(column, p);
   const double chunk = 0.05;

@@ -1,8 +1,9 @@
-#include "GranularBed.h"
+#include "bed/GranularBed.h"
 
-#include "../common/CellList.h"
-#include "../common/Error.h"
-#include "../dem/DemSolver.h"
+#include "common/CellList.h"
+#include "common/Error.h"
+#include "dem/DemSetup.h"
+#include "dem/DemSolver.h"
 
 #include <algorithm>
 #include <cmath>
@@ -167,14 +168,15 @@ ParticleSet settleBed(const ParticleSet& loose, const GranularBedParams& p, cons
   const double height = filled.surfaceHeight - filled.floorHeight();
   DemParams dp;
   dp.walls = containerWalls(filled);
-  dp.gravity.vector = {0.0, 0.0, -g};
+  dp.gravity = Gravity::downward(g);
   dp.contact.restitutionN = dp.contact.restitutionT = 0.3;
   dp.contact.muS = p.settlingFriction;
   dp.contact.muR = dp.contact.muT = 0.0;
   dp.initialOverlapLimit = 0.05;
-  const StiffnessProposal k =
-      proposeStiffness(rmin, p.particleDensity, std::sqrt(2.0 * g * rmin), 0.01, g, height, 25.0);
+  const StiffnessChoice k = chooseStiffnessAndStep(
+      {rmin, p.particleDensity, std::sqrt(2.0 * g * rmin), 0.01, g, height, 25.0});
   dp.contact.kN = k.kN;
+  dp.contact.kT = k.kT;
   dp.dt = k.dt;
   const double fall = std::sqrt(2.0 * height / g);
   DemSolver solver(loose, dp);

@@ -15,10 +15,10 @@
 // (monodisperse bulk 0.58–0.64, lower for higher SettlingFriction).
 #pragma once
 
-#include "../common/ParticleSet.h"
-#include "../common/Progress.h"
-#include "Container.h"
-#include "SizeDistribution.h"
+#include "bed/SizeDistribution.h"
+#include "common/Container.h"
+#include "common/ParticleSet.h"
+#include "common/Progress.h"
 
 #include <cstdint>
 #include <string>

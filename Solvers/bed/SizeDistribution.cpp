@@ -1,6 +1,6 @@
-#include "SizeDistribution.h"
+#include "bed/SizeDistribution.h"
 
-#include "../common/Error.h"
+#include "common/Error.h"
 
 #include <cmath>
 #include <sstream>

@@ -6,7 +6,7 @@
 // cumulative distribution (PHYSICS.md §7).
 #pragma once
 
-#include "../common/Random.h"
+#include "common/Random.h"
 
 #include <string>
 

@@ -1,6 +1,6 @@
-#include "ContactModels.h"
+#include "dem/ContactModels.h"
 
-#include "../common/Error.h"
+#include "common/Error.h"
 
 #include <sstream>
 
@@ -54,7 +54,7 @@ StiffnessProposal proposeStiffness(double rmin, double density, double vmax, dou
   p.kN = std::max(kinetic, stat);
   if (!(p.kN > 0.0))
     throw InputError("proposeStiffness: give a positive maximum speed or gravity and bed height");
-  p.collisionTime = M_PI * std::sqrt(m / (2.0 * p.kN));
+  p.collisionTime = pairCollisionTime(m, p.kN);
   p.dt = p.collisionTime / stepsPerCollision;
   return p;
 }

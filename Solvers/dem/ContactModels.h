@@ -243,6 +243,11 @@ ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants&
   return out;
 }
 
+// Undamped duration of a contact between two particles of mass m (reduced mass m/2) on a
+// spring k: τ = π sqrt(m / (2k)) (Schwartz 2012 Eq. 4). The DEM's stability check, the
+// proposed stiffness and chooseStiffnessAndStep (dem/DemSetup.h) all use this one formula.
+inline double pairCollisionTime(double mass, double k) { return M_PI * std::sqrt(0.5 * mass / k); }
+
 // Proposed k_N and time step (Schwartz 2012 Eqs. 4-5, 36-39; PHYSICS.md §1.6).
 struct StiffnessProposal {
   double kN;            // N/m

@@ -1,5 +1,6 @@
-#include "DemRun.h"
+#include "dem/DemRun.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -7,39 +8,25 @@ namespace craterkit {
 
 DemRun::DemRun(const ParticleSet& initial, const DemParams& params, double startTime,
                std::size_t keptStates)
-    : initial_(initial), params_(params), startTime_(startTime), keptStates_(keptStates),
-      solver_(std::make_unique<DemSolver>(initial, params)) {}
-
-void DemRun::keep() {
-  if (keptStates_ == 0 || kept_.count(solver_->stepCount()))
-    return;
-  std::ostringstream out;
-  solver_->writeCheckpoint(out);
-  kept_[solver_->stepCount()] = out.str();
-  while (kept_.size() > keptStates_)
-    kept_.erase(kept_.begin()); // the initial state is always recoverable from the input
-}
+    : TimeDrivenRun(std::make_unique<DemSolver>(initial, params), keptStates, -1),
+      initial_(initial), params_(params), startTime_(startTime) {}
 
 const DemSolver& DemRun::advanceTo(double time, const ProgressCallback& progress,
                                    const std::string& checkpointPath, long long checkpointEvery) {
   const double dt = params_.dt;
   const long long target =
       std::max(0LL, static_cast<long long>(std::ceil((time - startTime_) / dt - 1e-9)));
-  if (target < solver_->stepCount()) {
-    auto it = kept_.upper_bound(target);
-    if (it == kept_.begin()) {
-      solver_ = std::make_unique<DemSolver>(initial_, params_);
-    } else {
-      --it;
-      std::istringstream in(it->second);
-      solver_ = std::make_unique<DemSolver>(DemSolver::readCheckpoint(in, it->second.size()));
-    }
-  }
+  goBackTo(
+      target, solver_->stepCount(), [&] { return std::make_unique<DemSolver>(initial_, params_); },
+      [](const std::string& bytes) {
+        std::istringstream in(bytes);
+        return std::make_unique<DemSolver>(DemSolver::readCheckpoint(in, bytes.size()));
+      });
   if (target > solver_->stepCount()) {
     const long long start = solver_->stepCount();
     // Behind the checkpoint file's state: no checkpoint until it is passed.
     const long long quiet =
-        checkpointPath.empty() ? start : std::min(target, std::max(start, checkpointStep_));
+        checkpointPath.empty() ? start : std::min(target, std::max(start, checkpointPosition()));
     const auto part = [&](long long from, long long to) -> ProgressCallback {
       if (!progress)
         return {};
@@ -57,20 +44,24 @@ const DemSolver& DemRun::advanceTo(double time, const ProgressCallback& progress
       solver_->step();
     if (!checkpointPath.empty() &&
         (checkpointEvery <= 0 || solver_->stepCount() % checkpointEvery != 0) &&
-        solver_->stepCount() > checkpointStep_)
+        aheadOfCheckpoint(solver_->stepCount()))
       solver_->writeCheckpoint(checkpointPath); // every requested state is recoverable
     if (!checkpointPath.empty())
-      checkpointStep_ = std::max(checkpointStep_, solver_->stepCount());
+      checkpointReached(solver_->stepCount());
   }
-  keep();
+  keep(solver_->stepCount(), [&] {
+    std::ostringstream out;
+    solver_->writeCheckpoint(out);
+    return out.str();
+  });
   return *solver_;
 }
 
 void DemRun::resumeFrom(const std::string& checkpointPath) {
-  solver_ = std::make_unique<DemSolver>(DemSolver::readCheckpoint(checkpointPath));
+  auto solver = std::make_unique<DemSolver>(DemSolver::readCheckpoint(checkpointPath));
+  const long long step = solver->stepCount();
+  resumed(std::move(solver), step);
   params_ = solver_->params();
-  kept_.clear();
-  checkpointStep_ = solver_->stepCount();
 }
 
 } // namespace craterkit

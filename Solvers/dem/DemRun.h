@@ -1,4 +1,5 @@
-// A DEM run driven by requested output times, for time-dependent pipelines.
+// A DEM run driven by requested output times, for time-dependent pipelines (the shared
+// protocol is common/TimeDrivenRun.h; positions are step counts, snapshots checkpoint bytes).
 //
 // Holds the initial state, advances the solver to any later time, and keeps serialized
 // snapshots of earlier output times so that a request for an earlier time restarts from
@@ -10,15 +11,15 @@
 // writes no checkpoint until it has passed the file's step again.
 #pragma once
 
-#include "DemSolver.h"
+#include "common/TimeDrivenRun.h"
+#include "dem/DemSolver.h"
 
-#include <map>
 #include <memory>
 #include <string>
 
 namespace craterkit {
 
-class DemRun {
+class DemRun : public TimeDrivenRun<DemSolver, long long, std::string> {
 public:
   // startTime: simulation time of the initial state; keptStates: snapshots kept in memory.
   DemRun(const ParticleSet& initial, const DemParams& params, double startTime = 0.0,
@@ -32,22 +33,16 @@ public:
   // Simulation time of the furthest state written to or resumed from the checkpoint file
   // (negative if none).
   double checkpointTime() const {
-    return checkpointStep_ < 0 ? -1.0 : startTime_ + checkpointStep_ * params_.dt;
+    const long long step = checkpointPosition();
+    return step < 0 ? -1.0 : startTime_ + step * params_.dt;
   }
 
   double time() const { return startTime_ + solver_->time(); }
-  const DemSolver& solver() const { return *solver_; }
 
 private:
-  void keep();
-
   ParticleSet initial_;
   DemParams params_;
   double startTime_;
-  std::size_t keptStates_;
-  std::unique_ptr<DemSolver> solver_;
-  std::map<long long, std::string> kept_; // step -> checkpoint bytes
-  long long checkpointStep_ = -1;         // step of the state in the checkpoint file
 };
 
 } // namespace craterkit

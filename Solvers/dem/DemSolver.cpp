@@ -1,25 +1,17 @@
-#include "DemSolver.h"
+#include "dem/DemSolver.h"
 
-#include "../common/CellList.h"
-#include "../common/Error.h"
+#include "common/Error.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
 namespace craterkit {
 
 namespace {
-
-// Below this many particles a step is too short to amortise OpenMP's barriers (with more
-// threads than cores they cost a time slice each): run serially. Results do not depend on it.
-constexpr std::size_t kParallelMin = 512;
 
 using Vec = Eigen::Vector3d;
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -33,28 +25,6 @@ inline void put(std::vector<double>& a, std::size_t i, const Vec& v) {
   a[3 * i + 2] = v[2];
 }
 
-// Walks two pair lists sorted by (i, j) and calls same(a, b) for each pair in both.
-template <class Same> std::size_t forCommonPairs(const std::vector<std::uint32_t>& ai,
-                                                 const std::vector<std::uint32_t>& aj,
-                                                 const std::vector<std::uint32_t>& bi,
-                                                 const std::vector<std::uint32_t>& bj,
-                                                 Same&& same) {
-  std::size_t found = 0;
-  for (std::size_t a = 0, b = 0; a < ai.size() && b < bi.size();) {
-    const auto ka = (static_cast<std::uint64_t>(ai[a]) << 32) | aj[a];
-    const auto kb = (static_cast<std::uint64_t>(bi[b]) << 32) | bj[b];
-    if (ka < kb) {
-      ++a;
-    } else if (kb < ka) {
-      ++b;
-    } else {
-      same(a++, b++);
-      ++found;
-    }
-  }
-  return found;
-}
-
 std::string describe(const ParticleSet& s, std::size_t i) {
   std::ostringstream out;
   out << "particle " << i << " (Id " << s.id[i] << ")";
@@ -62,48 +32,6 @@ std::string describe(const ParticleSet& s, std::size_t i) {
 }
 
 } // namespace
-
-// ---------------------------------------------------------------------------------------------
-void Gravity::acceleration(const double x[3], double a[3]) const {
-  switch (type) {
-  case Type::None:
-    a[0] = a[1] = a[2] = 0.0;
-    return;
-  case Type::Uniform:
-    for (int k = 0; k < 3; ++k)
-      a[k] = vector[k];
-    return;
-  default: {
-    const double d[3] = {x[0] - centre[0], x[1] - centre[1], x[2] - centre[2]};
-    const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    const double f = r2 > 0.0 ? -GM / (r2 * std::sqrt(r2)) : 0.0;
-    for (int k = 0; k < 3; ++k)
-      a[k] = f * d[k];
-  }
-  }
-}
-
-double Gravity::potential(const double x[3]) const {
-  switch (type) {
-  case Type::None:
-    return 0.0;
-  case Type::Uniform:
-    return -(vector[0] * x[0] + vector[1] * x[1] + vector[2] * x[2]);
-  default: {
-    const double d[3] = {x[0] - centre[0], x[1] - centre[1], x[2] - centre[2]};
-    const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    return r > 0.0 ? -GM / r : 0.0;
-  }
-  }
-}
-
-void Gravity::validate() const {
-  for (int k = 0; k < 3; ++k)
-    if (!std::isfinite(vector[k]) || !std::isfinite(centre[k]))
-      throw InputError("Gravity must be finite");
-  if (!std::isfinite(GM) || GM < 0.0)
-    throw InputError("the point-mass GM must be finite and non-negative");
-}
 
 void DemParams::validate() const {
   contact.validate();
@@ -213,7 +141,7 @@ void DemSolver::initialise(bool computeInitialForces) {
         params_.contact.youngsModulus / (1.0 - std::pow(params_.contact.poissonRatio, 2));
     k = 2.0 * E * std::sqrt(rmin * 0.01 * rmin); // wall stiffness at 1 % overlap
   }
-  collisionTime_ = M_PI * std::sqrt(0.5 * mmin / k);
+  collisionTime_ = pairCollisionTime(mmin, k);
   const double steps = collisionTime_ / params_.dt;
   if (steps < params_.minStepsPerCollision) {
     std::ostringstream msg;
@@ -235,8 +163,8 @@ void DemSolver::initialise(bool computeInitialForces) {
   std::size_t deep = 0;
   double worst = 0.0;
   std::size_t wi = 0, wj = 0;
-  for (std::size_t k2 = 0; k2 < pairI_.size(); ++k2) {
-    const std::size_t i = pairI_[k2], j = pairJ_[k2];
+  for (std::size_t k2 = 0; k2 < pairs_.size(); ++k2) {
+    const std::size_t i = pairs_.first[k2], j = pairs_.second[k2];
     const Vec d = at(s.position, j) - at(s.position, i);
     const double f = (s.radius[i] + s.radius[j] - d.norm()) / std::min(s.radius[i], s.radius[j]);
     if (f > params_.initialOverlapLimit)
@@ -303,105 +231,11 @@ void DemSolver::sortSpatially() {
 void DemSolver::buildNeighbourList() {
   const double* x = state_.position.data();
   const double* r = state_.radius.data();
-  // Cells fit the ordinary particles; a few much larger ones (an impactor) search a wider
-  // range themselves and every other particle checks them directly, so one big sphere does
-  // not make every cell (and every search) eight times larger.
-  const double rmin = n_ ? *std::min_element(state_.radius.begin(), state_.radius.end()) : 0.0;
-  std::vector<std::uint32_t> large;
-  double rsmall = 0.0;
-  for (std::size_t i = 0; i < n_; ++i) {
-    if (r[i] > 1.5 * rmin)
-      large.push_back(static_cast<std::uint32_t>(i));
-    else
-      rsmall = std::max(rsmall, r[i]);
-  }
-  if (large.size() > 64) {
-    large.clear();
-    rsmall = rmax_;
-  }
-  std::vector<char> isLarge(large.empty() ? 0 : n_, 0);
-  for (std::uint32_t b : large)
-    isLarge[b] = 1;
-  CellList cells;
-  cells.build(x, n_, 2.0 * rsmall + skin_);
-  // Calls f(j) for every j > i within reach of i.
-  auto forEachNeighbour = [&](std::size_t i, auto&& f) {
-    auto test = [&](std::size_t j) {
-      const double reach = r[i] + r[j] + skin_;
-      const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1],
-                   d2 = x[3 * j + 2] - x[3 * i + 2];
-      if (d0 * d0 + d1 * d1 + d2 * d2 < reach * reach)
-        f(j);
-    };
-    if (large.empty()) {
-      cells.forEachCandidate(&x[3 * i], r[i] + rmax_ + skin_, [&](std::size_t j) {
-        if (j > i)
-          test(j);
-      });
-      return;
-    }
-    cells.forEachCandidate(&x[3 * i], r[i] + rsmall + skin_, [&](std::size_t j) {
-      if (j > i && !isLarge[j])
-        test(j);
-    });
-    for (std::uint32_t b : large)
-      if (b > i)
-        test(b);
-  };
-  std::vector<std::size_t> count(n_ + 1, 0);
-#pragma omp parallel for schedule(dynamic, 256) if (n_ >= kParallelMin)
-  for (std::size_t i = 0; i < n_; ++i) {
-    std::size_t c = 0;
-    forEachNeighbour(i, [&](std::size_t) { ++c; });
-    count[i + 1] = c;
-  }
-  std::vector<std::size_t> start(n_ + 1, 0);
-  for (std::size_t i = 0; i < n_; ++i)
-    start[i + 1] = start[i] + count[i + 1];
-  const std::size_t pairs = start[n_];
-  std::vector<std::uint32_t> newI(pairs), newJ(pairs);
-#pragma omp parallel if (n_ >= kParallelMin)
-  {
-    std::vector<std::uint32_t> buffer;
-#pragma omp for schedule(dynamic, 256)
-    for (std::size_t i = 0; i < n_; ++i) {
-      buffer.clear();
-      forEachNeighbour(i, [&](std::size_t j) { buffer.push_back(static_cast<std::uint32_t>(j)); });
-      std::sort(buffer.begin(), buffer.end());
-      std::copy(buffer.begin(), buffer.end(), newJ.begin() + start[i]);
-      std::fill(newI.begin() + start[i], newI.begin() + start[i + 1],
-                static_cast<std::uint32_t>(i));
-    }
-  }
-  // Carry histories of pairs that stay in the list (both lists sorted by (i, j)).
-  std::vector<ContactHistory> newHistory(pairs);
-  std::vector<char> newActive(pairs, 0);
-  forCommonPairs(pairI_, pairJ_, newI, newJ, [&](std::size_t a, std::size_t b) {
-    newHistory[b] = pairHistory_[a];
-    newActive[b] = pairActive_[a];
-  });
-  pairI_.swap(newI);
-  pairJ_.swap(newJ);
-  pairHistory_.swap(newHistory);
-  pairActive_.swap(newActive);
-  firstStart_.swap(start);
-  pairForce_.assign(3 * pairs, 0.0);
-  pairTorqueI_.assign(3 * pairs, 0.0);
-  pairTorqueJ_.assign(3 * pairs, 0.0);
-  // Pairs in which each particle is the second member, in increasing order of the first.
-  secondStart_.assign(n_ + 1, 0);
-  for (std::size_t k = 0; k < pairs; ++k)
-    ++secondStart_[pairJ_[k] + 1];
-  for (std::size_t i = 0; i < n_; ++i)
-    secondStart_[i + 1] += secondStart_[i];
-  secondPair_.resize(pairs);
-  std::vector<std::size_t> fill(secondStart_.begin(), secondStart_.end() - 1);
-  for (std::size_t k = 0; k < pairs; ++k)
-    secondPair_[fill[pairJ_[k]]++] = k;
+  pairs_.build(x, r, n_, rmax_, skin_);
   // Walls a particle can reach before the next rebuild (it moves less than skin/2).
   wallNear_.assign(n_, 0);
   const std::size_t walls = params_.walls.size();
-#pragma omp parallel for schedule(static) if (n_ >= kParallelMin)
+#pragma omp parallel for schedule(static) if (n_ >= kDemParallelMin)
   for (std::size_t i = 0; i < n_; ++i)
     for (std::size_t w = 0; w < walls; ++w) {
       const Wall& wall = params_.walls[w];
@@ -442,23 +276,23 @@ void DemSolver::computeForcesWith(const Law& pairLaw, const Law& wallLaw, double
   const double* x = s.position.data();
   const double* r = s.radius.data();
   const double* m = s.mass.data();
-  const std::size_t pairs = pairI_.size();
+  const std::size_t pairs = pairs_.size();
   double worst = 0.0;
 
-#pragma omp parallel for schedule(dynamic, 4096) reduction(max : worst) if (n_ >= kParallelMin)
+#pragma omp parallel for schedule(dynamic, 4096) reduction(max : worst) if (n_ >= kDemParallelMin)
   for (std::size_t k = 0; k < pairs; ++k) {
-    const std::size_t i = pairI_[k], j = pairJ_[k];
+    const std::size_t i = pairs_.first[k], j = pairs_.second[k];
     const Vec rho(x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]);
     const double d2 = rho.squaredNorm(), sum = r[i] + r[j];
     if (d2 >= sum * sum || d2 == 0.0) {
-      if (pairActive_[k]) {
+      if (pairs_.active[k]) {
         // Separated: clear the history and leave zeros for the gather, which sums every
         // pair without a branch.
-        pairActive_[k] = 0;
-        pairHistory_[k].clear();
-        put(pairForce_, k, Vec::Zero());
-        put(pairTorqueI_, k, Vec::Zero());
-        put(pairTorqueJ_, k, Vec::Zero());
+        pairs_.active[k] = 0;
+        pairs_.history[k].clear();
+        put(pairs_.force, k, Vec::Zero());
+        put(pairs_.torqueFirst, k, Vec::Zero());
+        put(pairs_.torqueSecond, k, Vec::Zero());
       }
       continue;
     }
@@ -475,27 +309,27 @@ void DemSolver::computeForcesWith(const Law& pairLaw, const Law& wallLaw, double
     st.omegaSum = wi + wj;
     st.reducedMass = m[i] * m[j] / (m[i] + m[j]);
     st.reducedRadius = r[i] * r[j] / sum;
-    const ContactResult res = ssdemContact(pairLaw, cp, fc, st, pairHistory_[k], dt);
-    put(pairForce_, k, res.force);
-    put(pairTorqueI_, k, res.torqueP);
-    put(pairTorqueJ_, k, res.torqueN);
-    pairActive_[k] = 1;
+    const ContactResult res = ssdemContact(pairLaw, cp, fc, st, pairs_.history[k], dt);
+    put(pairs_.force, k, res.force);
+    put(pairs_.torqueFirst, k, res.torqueP);
+    put(pairs_.torqueSecond, k, res.torqueN);
+    pairs_.active[k] = 1;
     worst = std::max(worst, st.overlap / std::min(r[i], r[j]));
   }
 
   const std::size_t walls = params_.walls.size();
-#pragma omp parallel for schedule(dynamic, 4096) reduction(max : worst) if (n_ >= kParallelMin)
+#pragma omp parallel for schedule(dynamic, 4096) reduction(max : worst) if (n_ >= kDemParallelMin)
   for (std::size_t i = 0; i < n_; ++i) {
     Vec f = Vec::Zero(), t = Vec::Zero();
     // Inactive pairs hold zeros (set when they separate, or at the list build).
-    for (std::size_t k = firstStart_[i]; k < firstStart_[i + 1]; ++k) {
-      f += at(pairForce_, k);
-      t += at(pairTorqueI_, k);
+    for (std::size_t k = pairs_.firstStart[i]; k < pairs_.firstStart[i + 1]; ++k) {
+      f += at(pairs_.force, k);
+      t += at(pairs_.torqueFirst, k);
     }
-    for (std::size_t q = secondStart_[i]; q < secondStart_[i + 1]; ++q) {
-      const std::size_t k = secondPair_[q];
-      f -= at(pairForce_, k);
-      t += at(pairTorqueJ_, k);
+    for (std::size_t q = pairs_.secondStart[i]; q < pairs_.secondStart[i + 1]; ++q) {
+      const std::size_t k = pairs_.secondPair[q];
+      f -= at(pairs_.force, k);
+      t += at(pairs_.torqueSecond, k);
     }
     for (std::uint64_t near = wallNear_[i]; near != 0; near &= near - 1) {
       const std::size_t w = static_cast<std::size_t>(__builtin_ctzll(near));
@@ -556,12 +390,12 @@ double DemSolver::elasticEnergyWith(const Law& pairLaw, const Law& wallLaw) cons
            0.5 * law.stiffness(overlap, rbar) * br * br * xi.squaredNorm() +
            0.5 * 2.0 * kT * br * br * h.twisting * h.twisting;
   };
-  for (std::size_t k = 0; k < pairI_.size(); ++k) {
-    const std::size_t i = pairI_[k], j = pairJ_[k];
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const std::size_t i = pairs_.first[k], j = pairs_.second[k];
     const double d = (at(s.position, j) - at(s.position, i)).norm();
     const double overlap = s.radius[i] + s.radius[j] - d;
     if (overlap > 0.0)
-      e += springs(pairHistory_[k], overlap,
+      e += springs(pairs_.history[k], overlap,
                    s.radius[i] * s.radius[j] / (s.radius[i] + s.radius[j]), pairLaw);
   }
   const std::size_t walls = params_.walls.size();
@@ -582,7 +416,7 @@ void DemSolver::step() {
   std::vector<double>& v = state_.velocity;
   std::vector<double>& w = state_.angularVelocity;
   double moved = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : moved) if (n_ >= kParallelMin)
+#pragma omp parallel for schedule(static) reduction(max : moved) if (n_ >= kDemParallelMin)
   for (std::size_t i = 0; i < n_; ++i) {
     double d2 = 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -694,20 +528,7 @@ std::size_t DemSolver::removeParticles(const std::vector<char>& remove) {
   compact(wallHistory_, walls);
   compact(wallActive_, walls);
   // Renumber the pairs; the map is increasing, so the list stays sorted.
-  std::size_t o = 0;
-  for (std::size_t k = 0; k < pairI_.size(); ++k) {
-    if (remove[pairI_[k]] || remove[pairJ_[k]])
-      continue;
-    pairI_[o] = newIndex[pairI_[k]];
-    pairJ_[o] = newIndex[pairJ_[k]];
-    pairHistory_[o] = pairHistory_[k];
-    pairActive_[o] = pairActive_[k];
-    ++o;
-  }
-  pairI_.resize(o);
-  pairJ_.resize(o);
-  pairHistory_.resize(o);
-  pairActive_.resize(o);
+  pairs_.removeParticles(remove, newIndex);
   const std::size_t removed = n_ - kept;
   n_ = kept;
   rmax_ = *std::max_element(s.radius.begin(), s.radius.end());
@@ -739,7 +560,7 @@ DemDiagnostics DemSolver::diagnostics() const {
     d.elasticEnergy = elasticEnergyWith(law, law);
   }
   d.maxOverlap = worstOverlap_;
-  for (char a : pairActive_)
+  for (char a : pairs_.active)
     d.contacts += a != 0;
   for (char a : wallActive_)
     d.wallContacts += a != 0;
@@ -749,259 +570,12 @@ DemDiagnostics DemSolver::diagnostics() const {
 std::vector<std::pair<std::size_t, std::size_t>> DemSolver::contactPairs() const {
   std::vector<std::pair<std::size_t, std::size_t>> out;
   const ParticleSet& s = state_;
-  for (std::size_t k = 0; k < pairI_.size(); ++k) {
-    const std::size_t i = pairI_[k], j = pairJ_[k];
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const std::size_t i = pairs_.first[k], j = pairs_.second[k];
     if ((at(s.position, j) - at(s.position, i)).norm() < s.radius[i] + s.radius[j])
       out.emplace_back(i, j);
   }
   return out;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Checkpoints: a versioned little-endian binary file. Every count is checked against the
-// bytes left in the file before anything is allocated.
-namespace {
-
-constexpr char kMagic[8] = {'C', 'K', 'D', 'E', 'M', 'C', 'P', '1'};
-
-struct Writer {
-  std::ostream& out;
-  template <class T> void pod(const T& v) {
-    out.write(reinterpret_cast<const char*>(&v), sizeof(T));
-  }
-  void str(const std::string& s) {
-    pod<std::uint64_t>(s.size());
-    out.write(s.data(), static_cast<std::streamsize>(s.size()));
-  }
-  template <class T> void vec(const std::vector<T>& v) {
-    pod<std::uint64_t>(v.size());
-    out.write(reinterpret_cast<const char*>(v.data()),
-              static_cast<std::streamsize>(v.size() * sizeof(T)));
-  }
-};
-
-struct Reader {
-  std::istream& in;
-  std::uint64_t left;
-  void need(std::uint64_t bytes, const char* what) {
-    if (bytes > left) {
-      std::ostringstream msg;
-      msg << "checkpoint truncated or corrupt: " << what << " needs " << bytes << " bytes, " << left
-          << " left";
-      throw InputError(msg.str());
-    }
-    left -= bytes;
-  }
-  template <class T> T pod(const char* what) {
-    need(sizeof(T), what);
-    T v;
-    in.read(reinterpret_cast<char*>(&v), sizeof(T));
-    if (!in)
-      throw InputError(std::string("checkpoint read failed at ") + what);
-    return v;
-  }
-  std::string str(const char* what) {
-    const auto size = pod<std::uint64_t>(what);
-    need(size, what);
-    std::string s(size, '\0');
-    in.read(s.data(), static_cast<std::streamsize>(size));
-    return s;
-  }
-  template <class T> std::vector<T> vec(const char* what, std::uint64_t expected) {
-    const auto size = pod<std::uint64_t>(what);
-    if (expected != ~0ULL && size != expected) {
-      std::ostringstream msg;
-      msg << "checkpoint corrupt: " << what << " has " << size << " entries, expected " << expected;
-      throw InputError(msg.str());
-    }
-    if (size > left / sizeof(T))
-      need(size * sizeof(T), what);
-    need(size * sizeof(T), what);
-    std::vector<T> v(size);
-    in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(size * sizeof(T)));
-    if (!in)
-      throw InputError(std::string("checkpoint read failed at ") + what);
-    return v;
-  }
-};
-
-} // namespace
-
-void DemSolver::writeCheckpoint(std::ostream& out) const {
-  Writer w{out};
-  out.write(kMagic, sizeof(kMagic));
-  w.pod<std::uint32_t>(1u); // endianness probe
-  const ContactParams& c = params_.contact;
-  w.str(c.normalModel);
-  for (double v : {c.kN, c.kT, c.restitutionN, c.restitutionT, c.muS, c.muR, c.muT, c.beta,
-                   c.cohesion, c.youngsModulus, c.poissonRatio})
-    w.pod(v);
-  w.pod<std::uint64_t>(params_.walls.size());
-  for (const Wall& wall : params_.walls) {
-    w.pod<std::int32_t>(static_cast<std::int32_t>(wall.type));
-    w.pod(wall.point);
-    w.pod(wall.normal);
-    w.pod(wall.radius);
-  }
-  w.pod<std::int32_t>(static_cast<std::int32_t>(params_.gravity.type));
-  w.pod(params_.gravity.vector);
-  w.pod(params_.gravity.GM);
-  w.pod(params_.gravity.centre);
-  for (double v :
-       {params_.dt, params_.skin, params_.overlapWarning, params_.overlapAbort,
-        params_.initialOverlapLimit, params_.minStepsPerCollision, params_.warnStepsPerCollision})
-    w.pod(v);
-  w.pod<std::uint64_t>(n_);
-  w.pod(time_);
-  w.pod(step_);
-  const ParticleSet& s = state_;
-  w.vec(s.position);
-  w.vec(s.velocity);
-  w.vec(s.angularVelocity);
-  w.vec(s.radius);
-  w.vec(s.mass);
-  w.vec(s.density);
-  w.vec(s.material);
-  w.vec(s.id);
-  w.vec(acc_);
-  w.vec(alpha_);
-  std::vector<std::uint32_t> ci, cj;
-  std::vector<ContactHistory> ch;
-  for (std::size_t k = 0; k < pairI_.size(); ++k)
-    if (pairActive_[k]) {
-      ci.push_back(pairI_[k]);
-      cj.push_back(pairJ_[k]);
-      ch.push_back(pairHistory_[k]);
-    }
-  w.vec(ci);
-  w.vec(cj);
-  w.vec(ch);
-  w.vec(wallHistory_);
-  w.vec(wallActive_);
-  w.pod<std::uint64_t>(overlapWarningSteps_);
-  out.write(kMagic, sizeof(kMagic)); // trailer: a complete file ends with the magic again
-  if (!out)
-    throw std::runtime_error("writing the checkpoint failed");
-}
-
-void DemSolver::writeCheckpoint(const std::string& path) const {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw InputError("cannot write checkpoint file " + tmp);
-    writeCheckpoint(out);
-    out.flush();
-    if (!out)
-      throw std::runtime_error("writing checkpoint file " + tmp + " failed (disk full?)");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    throw std::runtime_error("cannot move the checkpoint to " + path);
-}
-
-DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t available) {
-  Reader r{in, available};
-  char magic[8];
-  r.need(sizeof(magic), "magic");
-  in.read(magic, sizeof(magic));
-  if (!in || std::memcmp(magic, kMagic, sizeof(magic)) != 0)
-    throw InputError("not a CraterKit DEM checkpoint (wrong magic)");
-  if (r.pod<std::uint32_t>("endianness") != 1u)
-    throw InputError("checkpoint written on a machine of the other endianness");
-  DemParams p;
-  ContactParams& c = p.contact;
-  c.normalModel = r.str("normal model");
-  for (double* v : {&c.kN, &c.kT, &c.restitutionN, &c.restitutionT, &c.muS, &c.muR, &c.muT, &c.beta,
-                    &c.cohesion, &c.youngsModulus, &c.poissonRatio})
-    *v = r.pod<double>("contact parameters");
-  const auto walls = r.pod<std::uint64_t>("wall count");
-  if (walls > 1000)
-    throw InputError("checkpoint corrupt: implausible wall count");
-  for (std::uint64_t k = 0; k < walls; ++k) {
-    Wall wall;
-    const auto type = r.pod<std::int32_t>("wall type");
-    if (type < 0 || type > 3)
-      throw InputError("checkpoint corrupt: unknown wall type");
-    wall.type = static_cast<Wall::Type>(type);
-    wall.point = r.pod<std::array<double, 3>>("wall");
-    wall.normal = r.pod<std::array<double, 3>>("wall");
-    wall.radius = r.pod<double>("wall");
-    p.walls.push_back(wall);
-  }
-  const auto gtype = r.pod<std::int32_t>("gravity type");
-  if (gtype < 0 || gtype > 2)
-    throw InputError("checkpoint corrupt: unknown gravity type");
-  p.gravity.type = static_cast<Gravity::Type>(gtype);
-  p.gravity.vector = r.pod<std::array<double, 3>>("gravity");
-  p.gravity.GM = r.pod<double>("gravity");
-  p.gravity.centre = r.pod<std::array<double, 3>>("gravity");
-  for (double* v : {&p.dt, &p.skin, &p.overlapWarning, &p.overlapAbort, &p.initialOverlapLimit,
-                    &p.minStepsPerCollision, &p.warnStepsPerCollision})
-    *v = r.pod<double>("run parameters");
-  const auto n = r.pod<std::uint64_t>("particle count");
-  if (n == 0 || n > available / 100)
-    throw InputError("checkpoint corrupt: the particle count does not fit the file size");
-  const double time = r.pod<double>("time");
-  const auto step = r.pod<long long>("step");
-  ParticleSet s;
-  s.position = r.vec<double>("positions", 3 * n);
-  s.velocity = r.vec<double>("velocities", 3 * n);
-  s.angularVelocity = r.vec<double>("spins", 3 * n);
-  s.radius = r.vec<double>("radii", n);
-  s.mass = r.vec<double>("masses", n);
-  s.density = r.vec<double>("densities", n);
-  s.material = r.vec<int>("materials", n);
-  s.id = r.vec<std::int64_t>("ids", n);
-  auto acc = r.vec<double>("accelerations", 3 * n);
-  auto alpha = r.vec<double>("angular accelerations", 3 * n);
-  auto ci = r.vec<std::uint32_t>("contacts", ~0ULL);
-  auto cj = r.vec<std::uint32_t>("contacts", ci.size());
-  auto ch = r.vec<ContactHistory>("contact histories", ci.size());
-  auto wh = r.vec<ContactHistory>("wall histories", n * walls);
-  auto wa = r.vec<char>("wall contacts", n * walls);
-  const auto warnings = r.pod<std::uint64_t>("warning count");
-  char trailer[8];
-  r.need(sizeof(trailer), "trailer");
-  in.read(trailer, sizeof(trailer));
-  if (!in || std::memcmp(trailer, kMagic, sizeof(trailer)) != 0)
-    throw InputError(
-        "checkpoint incomplete (no trailer): the run was interrupted while writing it");
-  for (std::size_t k = 0; k < ci.size(); ++k)
-    if (ci[k] >= cj[k] || cj[k] >= n ||
-        (k > 0 && ((static_cast<std::uint64_t>(ci[k - 1]) << 32 | cj[k - 1]) >=
-                   (static_cast<std::uint64_t>(ci[k]) << 32 | cj[k]))))
-      throw InputError("checkpoint corrupt: contact list out of order");
-
-  DemSolver solver(Restore{}, s, p);
-  solver.time_ = time;
-  solver.step_ = step;
-  solver.acc_ = std::move(acc);
-  solver.alpha_ = std::move(alpha);
-  solver.wallHistory_ = std::move(wh);
-  solver.wallActive_ = std::move(wa);
-  solver.overlapWarningSteps_ = warnings;
-  // Merge the saved histories into the fresh list (every saved contact must be in it).
-  const std::size_t found =
-      forCommonPairs(ci, cj, solver.pairI_, solver.pairJ_, [&](std::size_t a, std::size_t b) {
-        solver.pairHistory_[b] = ch[a];
-        solver.pairActive_[b] = 1;
-      });
-  if (found != ci.size())
-    throw InputError("checkpoint corrupt: a saved contact is not between neighbouring particles");
-  return solver;
-}
-
-DemSolver DemSolver::readCheckpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in)
-    throw InputError("cannot open checkpoint file " + path);
-  const auto size = static_cast<std::uint64_t>(in.tellg());
-  in.seekg(0);
-  try {
-    return readCheckpoint(in, size);
-  } catch (const InputError& e) {
-    throw InputError(path + ": " + e.what());
-  }
 }
 
 } // namespace craterkit

@@ -15,10 +15,12 @@
 // contribute nothing and the sums keep their order).
 #pragma once
 
-#include "../common/ParticleSet.h"
-#include "../common/Progress.h"
-#include "ContactModels.h"
-#include "Walls.h"
+#include "common/Gravity.h"
+#include "common/ParticleSet.h"
+#include "common/Progress.h"
+#include "dem/ContactModels.h"
+#include "dem/PairList.h"
+#include "dem/Walls.h"
 
 #include <Eigen/Core>
 
@@ -29,18 +31,6 @@
 #include <vector>
 
 namespace craterkit {
-
-struct Gravity {
-  enum class Type { None = 0, Uniform = 1, PointMass = 2 };
-  Type type = Type::Uniform;
-  std::array<double, 3> vector{0.0, 0.0, -9.81}; // m/s^2 (Uniform)
-  double GM = 0.0;                               // m^3/s^2 (PointMass)
-  std::array<double, 3> centre{0.0, 0.0, 0.0};   // m (PointMass)
-
-  void acceleration(const double x[3], double a[3]) const;
-  double potential(const double x[3]) const; // per unit mass
-  void validate() const;
-};
 
 struct DemParams {
   ContactParams contact;
@@ -100,6 +90,8 @@ public:
   // order and the contact histories of the others. Returns how many were removed.
   std::size_t removeParticles(const std::vector<char>& remove);
 
+  // Checkpoints (format and checks in dem/DemCheckpoint.h, code in DemCheckpoint.cpp). The
+  // file is written through writeFileAtomically: a failed or aborted write keeps the last one.
   void writeCheckpoint(std::ostream& out) const;
   void writeCheckpoint(const std::string& path) const;
   static DemSolver readCheckpoint(std::istream& in, std::uint64_t available);
@@ -125,12 +117,7 @@ private:
   double skin_ = 0.0, rmax_ = 0.0, collisionTime_ = 0.0;
   std::vector<double> inertia_, acc_, alpha_, vPred_, wPred_, refPos_;
 
-  // Half Verlet list, sorted by (i, j); per-pair history and outputs.
-  std::vector<std::uint32_t> pairI_, pairJ_;
-  std::vector<ContactHistory> pairHistory_;
-  std::vector<char> pairActive_;
-  std::vector<double> pairForce_, pairTorqueI_, pairTorqueJ_;
-  std::vector<std::size_t> firstStart_, secondStart_, secondPair_;
+  PairList pairs_;                          // half Verlet list with per-pair history and outputs
   std::vector<ContactHistory> wallHistory_; // n_ x walls
   std::vector<std::uint64_t> wallNear_;     // per particle: walls within r + skin at the last build
   std::vector<char> wallActive_;

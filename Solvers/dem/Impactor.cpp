@@ -1,6 +1,6 @@
-#include "Impactor.h"
+#include "dem/Impactor.h"
 
-#include "../common/Error.h"
+#include "common/Error.h"
 
 #include <algorithm>
 #include <cmath>

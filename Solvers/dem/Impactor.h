@@ -1,7 +1,7 @@
 // A single spherical impactor placed above a bed, for DEM impact runs without the SPH stage.
 #pragma once
 
-#include "../common/ParticleSet.h"
+#include "common/ParticleSet.h"
 
 namespace craterkit {
 

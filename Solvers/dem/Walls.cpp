@@ -1,6 +1,6 @@
-#include "Walls.h"
+#include "dem/Walls.h"
 
-#include "../common/Error.h"
+#include "common/Error.h"
 
 #include <cmath>
 
@@ -128,22 +128,6 @@ double Wall::overlap(const double x[3], double r, double n[3], double& lever) co
   }
   }
   return -1.0;
-}
-
-std::vector<Wall> containerWalls(const Container& c) {
-  std::vector<Wall> walls;
-  if (c.type == Container::Type::Box) {
-    const double hx = 0.5 * c.boxSize[0], hy = 0.5 * c.boxSize[1];
-    walls.push_back(Wall::plane({0, 0, -c.boxSize[2]}, {0, 0, 1}));
-    walls.push_back(Wall::plane({-hx, 0, 0}, {1, 0, 0}));
-    walls.push_back(Wall::plane({hx, 0, 0}, {-1, 0, 0}));
-    walls.push_back(Wall::plane({0, -hy, 0}, {0, 1, 0}));
-    walls.push_back(Wall::plane({0, hy, 0}, {0, -1, 0}));
-  } else {
-    walls.push_back(Wall::bowl({0, 0, 0}, c.bowlRadius));
-    walls.push_back(Wall::cylinder({0, 0, 0}, {0, 0, 1}, c.bowlRadius));
-  }
-  return walls;
 }
 
 } // namespace craterkit

@@ -5,8 +5,6 @@
 // particle pair, with the wall as an immovable partner of infinite mass and radius.
 #pragma once
 
-#include "../bed/Container.h"
-
 #include <array>
 #include <string>
 #include <vector>
@@ -35,10 +33,5 @@ struct Wall {
   void validate() const; // throws InputError
   static std::string typeName(Type t);
 };
-
-// The walls of a bed container: box = floor and four side planes; bowl = the hemispherical
-// shell plus a cylinder of the same radius above its rim (so a bed filled above the rim is
-// held); both open at the top.
-std::vector<Wall> containerWalls(const Container& container);
 
 } // namespace craterkit

@@ -1,5 +1,6 @@
 #include "sph/SphRun.h"
 
+#include "common/AtomicWrite.h"
 #include "common/Error.h"
 
 #include <cmath>
@@ -7,13 +8,14 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 
 namespace craterkit {
 
 namespace {
 constexpr char kMagic[8] = {'C', 'K', 'S', 'P', 'H', '1', '\n', '\0'};
 
-template <class T> void put(std::ofstream& out, const std::vector<T>& v) {
+template <class T> void put(std::ostream& out, const std::vector<T>& v) {
   out.write(reinterpret_cast<const char*>(v.data()),
             static_cast<std::streamsize>(v.size() * sizeof(T)));
 }
@@ -27,11 +29,7 @@ void get(std::ifstream& in, std::vector<T>& v, std::size_t n, const std::string&
 
 void writeSphCheckpoint(const std::string& path, const SphState& s, double time, std::size_t steps,
                         double nextStep) {
-  const std::string tmp = path + ".part";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw std::runtime_error(tmp + ": cannot write the SPH checkpoint");
+  writeFileAtomically(path, "the SPH checkpoint", [&](std::ostream& out) {
     out.write(kMagic, sizeof kMagic);
     const std::uint64_t head[2] = {s.size(), steps};
     out.write(reinterpret_cast<const char*>(head), sizeof head);
@@ -41,11 +39,7 @@ void writeSphCheckpoint(const std::string& path, const SphState& s, double time,
     put(out, s.S), put(out, s.alpha), put(out, s.damage);
     std::vector<std::int32_t> mat(s.material.begin(), s.material.end());
     put(out, mat);
-    if (!out.flush())
-      throw std::runtime_error(tmp + ": writing the SPH checkpoint failed (disk full?)");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    throw std::runtime_error(path + ": cannot move the SPH checkpoint into place");
+  });
 }
 
 SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& steps,
@@ -88,52 +82,43 @@ SphState readSphCheckpoint(const std::string& path, double& time, std::size_t& s
 }
 
 SphRun::SphRun(const SphState& initial, const SphParams& params, std::size_t keptStates)
-    : initial_(initial), params_(params), keptStates_(keptStates),
-      solver_(std::make_unique<SphSolver>(initial, params)) {}
-
-void SphRun::keep() {
-  if (keptStates_ == 0 || kept_.count(solver_->time()))
-    return;
-  kept_[solver_->time()] =
-      Snapshot{solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep()};
-  while (kept_.size() > keptStates_)
-    kept_.erase(kept_.begin());
-}
+    : TimeDrivenRun(std::make_unique<SphSolver>(initial, params), keptStates,
+                    -std::numeric_limits<double>::infinity()),
+      initial_(initial), params_(params) {}
 
 const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress,
                                    const std::string& checkpointPath, long long checkpointEvery) {
-  if (time < solver_->time()) {
-    auto it = kept_.upper_bound(time);
-    if (it == kept_.begin()) {
-      solver_ = std::make_unique<SphSolver>(initial_, params_);
-    } else {
-      --it;
-      solver_ = std::make_unique<SphSolver>(it->second.state, params_);
-      solver_->restore(it->second.time, it->second.steps, it->second.nextStep);
-    }
-  }
+  goBackTo(
+      time, solver_->time(), [&] { return std::make_unique<SphSolver>(initial_, params_); },
+      [&](const SphSnapshot& kept) {
+        auto solver = std::make_unique<SphSolver>(kept.state, params_);
+        solver->restore(kept.time, kept.steps, kept.nextStep);
+        return solver;
+      });
   const double from = solver_->time();
   std::size_t lastCheckpoint = solver_->steps();
+  const auto checkpoint = [&] {
+    writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps(),
+                       solver_->stableStep());
+    checkpointReached(solver_->time());
+  };
   while (solver_->time() < time) {
     const double dt = std::min(solver_->stableStep(), time - solver_->time());
     solver_->step(dt);
     // A state behind the file's (a request for an earlier time) never overwrites it.
-    if (!checkpointPath.empty() && checkpointEvery > 0 && solver_->time() > checkpointTime_ &&
+    if (!checkpointPath.empty() && checkpointEvery > 0 && aheadOfCheckpoint(solver_->time()) &&
         solver_->steps() - lastCheckpoint >= static_cast<std::size_t>(checkpointEvery)) {
-      writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps(),
-                         solver_->stableStep());
+      checkpoint();
       lastCheckpoint = solver_->steps();
-      checkpointTime_ = solver_->time();
     }
     reportProgress(progress, (solver_->time() - from) / (time - from));
   }
   if (!checkpointPath.empty() && checkpointEvery > 0 && solver_->steps() != lastCheckpoint &&
-      solver_->time() > checkpointTime_) {
-    writeSphCheckpoint(checkpointPath, solver_->state(), solver_->time(), solver_->steps(),
-                       solver_->stableStep());
-    checkpointTime_ = solver_->time();
-  }
-  keep();
+      aheadOfCheckpoint(solver_->time()))
+    checkpoint();
+  keep(solver_->time(), [&] {
+    return SphSnapshot{solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep()};
+  });
   return *solver_;
 }
 
@@ -148,10 +133,9 @@ void SphRun::resumeFrom(const std::string& checkpointPath) {
     if (m < 0 || static_cast<std::size_t>(m) >= params_.materials.size())
       throw InputError(checkpointPath +
                        ": the checkpoint names a material this set-up does not have");
-  solver_ = std::make_unique<SphSolver>(s, params_);
-  solver_->restore(t, steps, next);
-  kept_.clear();
-  checkpointTime_ = t;
+  auto solver = std::make_unique<SphSolver>(s, params_);
+  solver->restore(t, steps, next);
+  resumed(std::move(solver), t);
 }
 
 } // namespace craterkit

@@ -3,6 +3,7 @@
 //   ck_dem_bench run FILE STEPS            add the impactor, run STEPS steps, print timings
 // Both print one JSON object on the last line.
 #include "bed/GranularBed.h"
+#include "dem/DemSetup.h"
 #include "dem/DemSolver.h"
 #include "dem/Impactor.h"
 
@@ -86,9 +87,9 @@ int main(int argc, char** argv) {
   c.type = Container::Type::Box;
   c.boxSize = {box.side, box.side, box.depth};
   p.walls = containerWalls(c);
-  p.gravity.vector = {0.0, 0.0, -kGravity};
-  const StiffnessProposal k =
-      proposeStiffness(kRadius, kDensity, kSpeed, 0.01, kGravity, box.depth, 30.0);
+  p.gravity = Gravity::downward(kGravity);
+  const StiffnessChoice k =
+      chooseStiffnessAndStep({kRadius, kDensity, kSpeed, 0.01, kGravity, box.depth, 30.0});
   p.contact.kN = k.kN;
   p.dt = k.dt;
   // The coefficients run.py gives the peers (EPS, MU_S, MU_R, MU_T, BETA there).

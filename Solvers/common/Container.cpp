@@ -1,6 +1,6 @@
-#include "Container.h"
+#include "common/Container.h"
 
-#include "../common/Error.h"
+#include "common/Error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,33 @@
+// DEM checkpoint files: the whole state of a DemSolver run, so that a run resumed from one
+// continues bit-identically (the restored run rebuilds its pair list and merges the saved
+// contact histories into it; Schwartz, Richardson & Michel 2012's SSDEM springs survive).
+//
+// Format "CKDEMCP1", native byte order (a uint32 1 probes it): the contact law's name and
+// coefficients, the walls, the gravity, the run parameters, the particle count, time and step,
+// the particle arrays (x v ω r m ρ material Id), the accelerations, the active contacts (i, j,
+// history) sorted by (i, j), the wall histories and flags, the count of overlap-warning steps,
+// and the magic again as a trailer (a file cut short is refused). Every count is checked
+// against the bytes left before anything is allocated. The writing and reading code is
+// DemSolver::writeCheckpoint / readCheckpoint (DemCheckpoint.cpp); a file is written to
+// PATH.part and renamed (common/AtomicWrite.h).
+#pragma once
+
+#include "common/ParticleSet.h"
+#include "dem/DemSolver.h"
+
+#include <string>
+
+namespace craterkit {
+
+// The particles of a checkpoint and where the run stood, for readers that show a checkpoint
+// as a particle frame.
+struct DemCheckpointState {
+  ParticleSet particles;
+  double time = 0.0;
+  long long step = 0;
+};
+
+// Reads PATH as a restart would (the same checks; throws InputError naming the file).
+DemCheckpointState readDemCheckpointState(const std::string& path);
+
+} // namespace craterkit

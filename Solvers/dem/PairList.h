@@ -1,0 +1,67 @@
+// The DEM's half Verlet list and its contact-history slots (pkdgrav SSDEM; Schwartz,
+// Richardson & Michel 2012, §2.1: contacts are found among neighbours within a skin).
+//
+// Pairs i < j within r_i + r_j + skin, found with a cell list, sorted by (i, j). Each pair
+// owns a slot: its contact history (carried across rebuilds by merging the old and new
+// sorted lists, so a rebuild never resets a spring) and its force and torques of the step.
+// Each particle finds its pairs through firstStart (pairs where it is i, in order of j) and
+// secondStart/secondPair (pairs where it is j, in order of i), so that the force gather sums
+// every particle's pairs in index order with no atomics: bit-identical for any thread count.
+#pragma once
+
+#include "dem/ContactModels.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace craterkit {
+
+// Below this many particles a step is too short to amortise OpenMP's barriers (with more
+// threads than cores they cost a time slice each): run serially. Results do not depend on it.
+constexpr std::size_t kDemParallelMin = 512;
+
+// Walks two pair lists sorted by (i, j) and calls same(a, b) for each pair in both; returns
+// how many there were.
+template <class Same> std::size_t forCommonPairs(const std::vector<std::uint32_t>& ai,
+                                                 const std::vector<std::uint32_t>& aj,
+                                                 const std::vector<std::uint32_t>& bi,
+                                                 const std::vector<std::uint32_t>& bj,
+                                                 Same&& same) {
+  std::size_t found = 0;
+  for (std::size_t a = 0, b = 0; a < ai.size() && b < bi.size();) {
+    const auto ka = (static_cast<std::uint64_t>(ai[a]) << 32) | aj[a];
+    const auto kb = (static_cast<std::uint64_t>(bi[b]) << 32) | bj[b];
+    if (ka < kb) {
+      ++a;
+    } else if (kb < ka) {
+      ++b;
+    } else {
+      same(a++, b++);
+      ++found;
+    }
+  }
+  return found;
+}
+
+struct PairList {
+  std::vector<std::uint32_t> first, second; // the pair's particles, first < second
+  std::vector<ContactHistory> history;
+  std::vector<char> active;                             // in contact at the last force evaluation
+  std::vector<double> force, torqueFirst, torqueSecond; // 3 per pair, of the last evaluation
+  std::vector<std::size_t> firstStart;  // n + 1: pairs firstStart[i] .. firstStart[i+1]-1 have i
+  std::vector<std::size_t> secondStart; // n + 1: into secondPair
+  std::vector<std::size_t> secondPair;  // pairs by second member, in increasing order of first
+
+  std::size_t size() const { return first.size(); }
+
+  // Rebuilds the list for n particles (positions x, radii r, largest radius rmax), keeping
+  // the history and contact flag of every pair that stays; new pairs start empty.
+  void build(const double* x, const double* r, std::size_t n, double rmax, double skin);
+
+  // Drops the pairs of removed particles and renumbers the rest (newIndex is increasing,
+  // so the list stays sorted). The per-particle indices need a build() afterwards.
+  void removeParticles(const std::vector<char>& remove, const std::vector<std::uint32_t>& newIndex);
+};
+
+} // namespace craterkit
