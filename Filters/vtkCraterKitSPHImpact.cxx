@@ -43,7 +43,7 @@ craterkit::SphImpactSetup vtkCraterKitSPHImpact::Setup() const {
   setup.impactSpeed = this->ImpactSpeed;
   setup.impactAngle = this->ImpactAngle;
   setup.targetMaterial = this->TargetMaterial;
-  setup.targetShape = enums::kTargetShape.toSolver(this->TargetShape);
+  setup.targetShape = craterkit::enums::kTargetShape.toSolver(this->TargetShape);
   setup.targetRadius = this->TargetRadius;
   setup.coarsening = this->TargetCoarsening;
   setup.targetPorosity = this->TargetPorosity;
