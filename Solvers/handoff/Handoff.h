@@ -135,4 +135,21 @@ HandoffResult handoff(const SphSnapshot& sph, const ParticleSet& bed, const Targ
 
 HandoffTotals totalsOf(const ParticleSet& p, const std::vector<std::size_t>* subset = nullptr);
 
+// The mapped bed's mass over the compact SPH mass it takes over (below the curtain); 0 if none.
+double compactMassRatio(const HandoffResult& r);
+
+// The figures a hand-off reports, named and ordered as ImpactHandoff's field data: each
+// total's Mass, Momentum and AngularMomentum, the counts, and StepSeconds (split, alpha shape,
+// carve, map, correct, ejecta).
+struct HandoffFigure {
+  std::string name;
+  std::vector<double> values;
+};
+std::vector<HandoffFigure> reportedFigures(const HandoffResult& r);
+
+struct Container;
+// Ejecta stay inside the bed's container (its walls go on above the surface: Container::inside);
+// with dropLandingOutside, what comes down outside its footprint leaves the domain.
+void confineToContainer(HandoffParams& params, const Container& container, bool dropLandingOutside);
+
 } // namespace craterkit

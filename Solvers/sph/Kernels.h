@@ -44,9 +44,15 @@ inline double cubicGradOverR(double q, double ih, double iq) {
   const double outer = -6.0 * t * t * iq;
   return s * (q < 0.5 ? inner : outer);
 }
+// The cubic spline's shape without its normalisation 8/(π h³), for 0 ≤ q < 1: W/W(0). Also a
+// weight where the normalisation cancels (the hand-off's velocity fit).
+inline double cubicShape(double q) {
+  const double t = 1.0 - q;
+  return q < 0.5 ? 6.0 * q * q * q - 6.0 * q * q + 1.0 : 2.0 * t * t * t;
+}
 inline double cubicValue(double q, double ih) {
-  const double s = 8.0 / M_PI * ih * ih * ih, t = 1.0 - q;
-  return s * (q < 0.5 ? 6.0 * q * q * q - 6.0 * q * q + 1.0 : 2.0 * t * t * t);
+  const double s = 8.0 / M_PI * ih * ih * ih;
+  return s * cubicShape(q);
 }
 
 struct WendlandC2 {

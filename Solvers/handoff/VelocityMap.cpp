@@ -1,0 +1,120 @@
+#include "handoff/VelocityMap.h"
+
+#include "sph/Kernels.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace craterkit {
+
+namespace {
+
+// The cubic spline with support h as a weight: its normalisation cancels in the fit.
+double weight(double r, double h) {
+  const double q = r / h;
+  if (q >= 1.0)
+    return 0.0;
+  return cubicShape(q);
+}
+
+Eigen::Vector3d vec(const std::vector<double>& a, std::size_t i) {
+  return {a[3 * i], a[3 * i + 1], a[3 * i + 2]};
+}
+
+struct Fit {
+  Eigen::Vector3d v, omega = Eigen::Vector3d::Zero();
+};
+
+// The velocity and spin at x from the compact particles around it.
+Fit fitAt(const Eigen::Vector3d& x, const SphSnapshot& sph, const std::vector<std::size_t>& compact,
+          const CompactCloud& cloud, int minNeighbours) {
+  const std::vector<double>& cx = cloud.x;
+  double wsum = 0.0;
+  Eigen::Vector3d xbar = Eigen::Vector3d::Zero(), vbar = Eigen::Vector3d::Zero();
+  std::vector<std::pair<std::size_t, double>> near;
+  std::size_t nearest = 0;
+  double best = INFINITY;
+  cloud.cells.forEachCandidate(x.data(), cloud.hmax, [&](std::size_t k) {
+    const Eigen::Vector3d d = vec(cx, k) - x;
+    const double r = d.norm();
+    if (r < best)
+      best = r, nearest = k;
+    const double w = weight(r, cloud.h[k]) * sph.mass[compact[k]];
+    if (w > 0.0)
+      near.emplace_back(k, w);
+  });
+  Fit fit;
+  if (static_cast<int>(near.size()) < minNeighbours || near.empty()) {
+    if (!std::isfinite(best)) { // nothing within hmax: search everything (rare)
+      for (std::size_t k = 0; k < compact.size(); ++k) {
+        const double r = (vec(cx, k) - x).norm();
+        if (r < best)
+          best = r, nearest = k;
+      }
+    }
+    fit.v = vec(sph.v, compact[nearest]);
+    return fit;
+  }
+  for (const auto& [k, w] : near) {
+    wsum += w;
+    xbar += w * vec(cx, k);
+    vbar += w * vec(sph.v, compact[k]);
+  }
+  xbar /= wsum;
+  vbar /= wsum;
+  fit.v = vbar;
+  if (near.size() < 4)
+    return fit;
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero(), B = Eigen::Matrix3d::Zero();
+  for (const auto& [k, w] : near) {
+    const Eigen::Vector3d d = vec(cx, k) - xbar;
+    A += w * d * d.transpose();
+    B += w * (vec(sph.v, compact[k]) - vbar) * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(A, Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d ev = eig.eigenvalues(); // ascending
+  if (!(ev(0) > 1e-6 * ev(2)))
+    return fit; // the neighbours do not span 3D: the fit is ill-posed
+  const Eigen::Matrix3d G = B * A.inverse();
+  // Limited as Barth & Jespersen (1989) limit a reconstruction: no velocity component beyond
+  // the range of the neighbours'. A linear field inside their hull is never limited (rigid
+  // motions stay exact); an extrapolation past one-sided neighbours (a grain at a cavity wall or
+  // in a thin sheet) would otherwise invent speeds many times the fastest SPH particle's.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  for (const auto& nk : near) {
+    lo = lo.cwiseMin(vec(sph.v, compact[nk.first]));
+    hi = hi.cwiseMax(vec(sph.v, compact[nk.first]));
+  }
+  const Eigen::Vector3d dv = G * (x - xbar);
+  double limit = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    const double room = dv(a) > 0.0 ? hi(a) - vbar(a) : vbar(a) - lo(a);
+    if (std::abs(dv(a)) > room)
+      limit = std::min(limit, std::max(0.0, room) / std::abs(dv(a)));
+  }
+  fit.v = vbar + limit * dv;
+  fit.omega =
+      0.5 * limit * Eigen::Vector3d(G(2, 1) - G(1, 2), G(0, 2) - G(2, 0), G(1, 0) - G(0, 1));
+  return fit;
+}
+
+} // namespace
+
+void mapVelocities(const SphSnapshot& sph, const std::vector<std::size_t>& compact,
+                   const CompactCloud& cloud, int minNeighbours,
+                   const std::vector<std::size_t>& mapped, ParticleSet& p) {
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t q = 0; q < mapped.size(); ++q) {
+    const std::size_t j = mapped[q];
+    const Fit fit = fitAt(vec(p.position, j), sph, compact, cloud, minNeighbours);
+    for (int a = 0; a < 3; ++a) {
+      p.velocity[3 * j + a] = fit.v(a);
+      p.angularVelocity[3 * j + a] = fit.omega(a);
+    }
+  }
+}
+
+} // namespace craterkit
