@@ -1,6 +1,6 @@
-#include "HeapAngle.h"
+#include "analysis/HeapAngle.h"
 
-#include "../common/Error.h"
+#include "common/Error.h"
 
 #include <algorithm>
 #include <cmath>

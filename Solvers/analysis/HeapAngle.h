@@ -5,7 +5,7 @@
 // over the flank, between fractions lo and hi of the heap's radial extent.
 #pragma once
 
-#include "../common/ParticleSet.h"
+#include "common/ParticleSet.h"
 
 namespace craterkit {
 

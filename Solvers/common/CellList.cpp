@@ -1,6 +1,6 @@
-#include "CellList.h"
+#include "common/CellList.h"
 
-#include "Error.h"
+#include "common/Error.h"
 
 #include <limits>
 

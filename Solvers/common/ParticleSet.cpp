@@ -1,4 +1,4 @@
-#include "ParticleSet.h"
+#include "common/ParticleSet.h"
 
 #include <cmath>
 

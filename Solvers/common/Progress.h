@@ -5,7 +5,7 @@
 // means "no reporting, never abort".
 #pragma once
 
-#include "Error.h"
+#include "common/Error.h"
 
 #include <functional>
 
