@@ -84,24 +84,59 @@ struct ContactResult {
   Eigen::Vector3d torqueN; // on n
 };
 
+// Constants of the friction part, computed once per force evaluation.
+struct FrictionConstants {
+  explicit FrictionConstants(const ContactParams& p)
+      : kT(p.tangentialStiffness()), dampingT(dashpotFactor(p.restitutionT)),
+        sqrtKT(std::sqrt(kT)) {}
+  double kT, dampingT, sqrtKT;
+};
+
+// The normal laws act without tension: a cohesionless contact's normal force is clipped at
+// zero when the dashpot would pull the grains together as they separate (as LAMMPS's
+// `limit_damping`); the contact then ends before the overlap closes. So that ε_n keeps its
+// meaning (the ratio of rebound to impact speed in a head-on collision), the damping factor is
+// the one for which the clipped law rebounds with ε_n (Schwäger & Pöschel 2007, Granular
+// Matter 9:465, for the linear law), found once per run by clippedDampingFactor.
+enum class NormalLawKind { LinearSpringDashpot, Hertz };
+
+// The dimensionless damping factor f (C = f sqrt(k_eff m)) for which a head-on collision
+// under the clipped law of KIND rebounds with RESTITUTION. Without clipping, the linear law
+// has f = dashpotFactor(ε) (Schwartz 2012 Eq. 15); with it f is larger, and the linear law
+// cannot rebound slower than ε = e^-2 while underdamped. Solved by bisection on a numerical
+// collision (an RK4 integration of the one-dimensional contact in units where m = 1 and the
+// elastic force at unit overlap is 1; ε does not depend on the impact speed for either law).
+double clippedDampingFactor(NormalLawKind kind, double restitution);
+// Restitution of the clipped law of KIND with damping factor F, and the contact's duration in
+// the dimensionless units above (impact speed 1); for tests and for clippedDampingFactor.
+double clippedRestitution(NormalLawKind kind, double factor, double* duration = nullptr);
+
 // A normal law: elastic force magnitude, the stiffness used for rolling and twisting
-// springs, the dashpot coefficient, and the stored elastic energy.
+// springs, the dashpot coefficient, and the stored elastic energy. FACTOR is the damping
+// factor of clippedDampingFactor.
 struct LinearSpringDashpot {
-  LinearSpringDashpot(double k, double restitution)
-      : kN(k), factor(dashpotFactor(restitution) * std::sqrt(k)) {}
+  LinearSpringDashpot(double k, double factor) : kN(k), factor(factor * std::sqrt(k)) {}
   double kN, factor; // factor includes sqrt(k_N)
   double elastic(double x, double) const { return kN * x; }
   double stiffness(double, double) const { return kN; }
   double damping(double, double, double mu) const { return factor * std::sqrt(mu); }
   double energy(double x, double) const { return 0.5 * kN * x * x; }
+  // The tangential spring: TangentialStiffness (2/7 k_N unless set; Schwartz 2012 Eq. 17).
+  double tangentialStiffness(double, double, const FrictionConstants& fc) const { return fc.kT; }
+  double tangentialRoot(double, double, const FrictionConstants& fc) const { return fc.sqrtKT; }
 };
 
 struct Hertz {
   // E* = E / (2 (1 - ν^2)) between two particles of one material, E / (1 - ν^2) against a
-  // rigid wall.
-  Hertz(double modulus, double restitution)
-      : effectiveModulus(modulus), factor(std::sqrt(5.0 / 6.0) * dashpotFactor(restitution)) {}
-  double effectiveModulus, factor;
+  // rigid wall. Damping C = f sqrt(k(x) m) with k(x) = 2 E* sqrt(r x) (Tsuji et al. 1992's
+  // form, so that ε does not depend on the impact speed).
+  // The tangential spring follows Mindlin's no-slip stiffness 8 G* sqrt(r x), which is
+  // 2 (1 - ν) / (2 - ν) of the normal tangent stiffness for one material (and against a rigid
+  // wall): TangentialStiffness does not apply.
+  Hertz(double modulus, double factor, double poisson)
+      : effectiveModulus(modulus), factor(factor),
+        tangentialRatio(2.0 * (1.0 - poisson) / (2.0 - poisson)) {}
+  double effectiveModulus, factor, tangentialRatio;
   double elastic(double x, double r) const {
     return 4.0 / 3.0 * effectiveModulus * std::sqrt(r * x) * x;
   }
@@ -111,6 +146,12 @@ struct Hertz {
   }
   double energy(double x, double r) const {
     return 8.0 / 15.0 * effectiveModulus * std::sqrt(r) * std::pow(x, 2.5);
+  }
+  double tangentialStiffness(double x, double r, const FrictionConstants&) const {
+    return tangentialRatio * stiffness(x, r);
+  }
+  double tangentialRoot(double x, double r, const FrictionConstants& fc) const {
+    return std::sqrt(tangentialStiffness(x, r, fc));
   }
 };
 
@@ -154,13 +195,20 @@ carryContactFrame(ContactHistory& h, const Eigen::Vector3d& n, const Eigen::Vect
   xi -= xi.dot(n) * n;
 }
 
-// Constants of the friction part, computed once per force evaluation.
-struct FrictionConstants {
-  explicit FrictionConstants(const ContactParams& p)
-      : kT(p.tangentialStiffness()), dampingT(dashpotFactor(p.restitutionT)),
-        sqrtKT(std::sqrt(kT)) {}
-  double kT, dampingT, sqrtKT;
-};
+// Objective rolling rate of Kuhn & Bagi (2004, Int. J. Solids Struct. 41:5793): the mean
+// travel of the contact point over the two surfaces, as an angular rate about the tangent
+// plane. With c = x_p + l_p n, the contact point crosses p's surface at a_p = c' - v_p -
+// w_p x l_p n and n's at a_n = c' - v_n + w_n x l_n n; their mean, (a_p + a_n)/2, is
+// R* (w_n - w_p) x n + (l_p - l_n)/(2 (l_p + l_n)) u_T with R* = l_p l_n / (l_p + l_n) and u the
+// sliding velocity of ContactState. Divided by R* and turned into a rate about the tangent
+// plane (n x): w_R = (w_n - w_p)_T + (1/l_n - 1/l_p)/2 (n x u) (docs/physics.md §1.4). For a
+// wall (l_n = inf) the second term is -(n x u)/(2 l_p): a sphere that slides without turning
+// still rolls at half the rate of its travel; one that slides with back-spin v/l_p does not.
+inline Eigen::Vector3d rollingRate(const ContactState& c) {
+  const Eigen::Vector3d& n = c.n;
+  const double invN = std::isfinite(c.leverN) ? 1.0 / c.leverN : 0.0;
+  return c.omegaRel - c.omegaRel.dot(n) * n + 0.5 * (invN - 1.0 / c.leverP) * n.cross(c.u);
+}
 
 // One contact: normal law + SSDEM tangential, rolling and twisting resistance.
 template <class Normal>
@@ -170,7 +218,7 @@ __attribute__((always_inline))
 inline ContactResult
 ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants& fc,
              const ContactState& c, ContactHistory& h, double dt) {
-  const double kT = fc.kT;
+  const double kT = law.tangentialStiffness(c.overlap, c.reducedRadius, fc);
   ContactResult out;
   const Eigen::Vector3d& n = c.n;
   const double un = c.u.dot(n);
@@ -183,14 +231,20 @@ ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants&
     const double a = p.beta * c.reducedRadius;
     fNsigned += p.cohesion * 4.0 * a * a;
   }
+  // No tension: a cohesionless contact's force is clipped at zero (see NormalLawKind), and
+  // friction, rolling and twisting are limited by the compressive load alone, so a sliding
+  // contact's tangential impulse is μ_s times its normal impulse.
+  if (p.cohesion == 0.0)
+    fNsigned = std::min(fNsigned, 0.0);
   const Eigen::Vector3d fN = fNsigned * n;
-  const double fNmag = std::abs(fNsigned);
+  const double fNmag = std::max(-fNsigned, 0.0);
 
   if (!h.fresh())
     carryContactFrame(h, n, c.omegaSum, dt);
   Eigen::Map<Eigen::Vector3d> S(h.spring), xiR(h.rolling);
   // Tangential spring and Coulomb slider; pkdgrav zeroes the spring when it slips.
-  const double cT = fc.dampingT * fc.sqrtKT * std::sqrt(c.reducedMass);
+  const double cT =
+      fc.dampingT * law.tangentialRoot(c.overlap, c.reducedRadius, fc) * std::sqrt(c.reducedMass);
   S += uT * dt;
   Eigen::Vector3d fT = kT * S + cT * uT;
   const double fTmax = p.muS * fNmag;
@@ -204,11 +258,8 @@ ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants&
   if (p.muR > 0.0 || p.muT > 0.0) {
     const double br = p.beta * c.reducedRadius;
     const double kN = law.stiffness(c.overlap, c.reducedRadius);
-    // Rolling (Kuhn & Bagi objective rolling rate, as in pkdgrav).
     const double twistRate = c.omegaRel.dot(n);
-    const double invN = std::isfinite(c.leverN) ? 1.0 / c.leverN : 0.0;
-    const Eigen::Vector3d omegaR =
-        c.omegaRel - twistRate * n + 0.5 * (1.0 / c.leverP - invN) * n.cross(c.u);
+    const Eigen::Vector3d omegaR = rollingRate(c);
     if (p.muR > 0.0) {
       const double kR = kN * br * br, cR = cN * br * br, mRmax = p.muR * br * fNmag;
       xiR += omegaR * dt;

@@ -132,6 +132,10 @@ void DemSolver::initialise(bool computeInitialForces) {
   wPred_ = s.angularVelocity;
   wallHistory_.assign(n_ * params_.walls.size(), ContactHistory{});
   wallActive_.assign(n_ * params_.walls.size(), 0);
+  dampingFactorN_ = clippedDampingFactor(params_.contact.normalModel == "Hertz"
+                                             ? NormalLawKind::Hertz
+                                             : NormalLawKind::LinearSpringDashpot,
+                                         params_.contact.restitutionN);
 
   // Stability: the shortest contact is the lightest pair (reduced mass m/2).
   const double mmin = *std::min_element(s.mass.begin(), s.mass.end());
@@ -258,9 +262,10 @@ void DemSolver::computeForces(double kick) {
   const ContactParams& c = params_.contact;
   if (c.normalModel == "Hertz") {
     const double E = c.youngsModulus / (1.0 - c.poissonRatio * c.poissonRatio);
-    computeForcesWith(Hertz{0.5 * E, c.restitutionN}, Hertz{E, c.restitutionN}, kick);
+    computeForcesWith(Hertz{0.5 * E, dampingFactorN_, c.poissonRatio},
+                      Hertz{E, dampingFactorN_, c.poissonRatio}, kick);
   } else {
-    const LinearSpringDashpot law{c.kN, c.restitutionN};
+    const LinearSpringDashpot law{c.kN, dampingFactorN_};
     computeForcesWith(law, law, kick);
   }
 }
@@ -554,9 +559,10 @@ DemDiagnostics DemSolver::diagnostics() const {
   const ContactParams& c = params_.contact;
   if (c.normalModel == "Hertz") {
     const double E = c.youngsModulus / (1.0 - c.poissonRatio * c.poissonRatio);
-    d.elasticEnergy = elasticEnergyWith(Hertz{0.5 * E, c.restitutionN}, Hertz{E, c.restitutionN});
+    d.elasticEnergy = elasticEnergyWith(Hertz{0.5 * E, dampingFactorN_, c.poissonRatio},
+                                        Hertz{E, dampingFactorN_, c.poissonRatio});
   } else {
-    const LinearSpringDashpot law{c.kN, c.restitutionN};
+    const LinearSpringDashpot law{c.kN, dampingFactorN_};
     d.elasticEnergy = elasticEnergyWith(law, law);
   }
   d.maxOverlap = worstOverlap_;

@@ -115,6 +115,7 @@ private:
   double time_ = 0.0;
   long long step_ = 0;
   double skin_ = 0.0, rmax_ = 0.0, collisionTime_ = 0.0;
+  double dampingFactorN_ = 0.0; // of the clipped normal law (clippedDampingFactor)
   std::vector<double> inertia_, acc_, alpha_, vPred_, wPred_, refPos_;
 
   PairList pairs_;                          // half Verlet list with per-pair history and outputs

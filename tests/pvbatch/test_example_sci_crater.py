@@ -65,6 +65,16 @@ for image in r["images"]:
     t.check(os.path.isfile(path) and os.path.getsize(path) > 10000, f"{image} missing or empty")
 md = open(os.path.join(out, "report.md")).read()
 t.check("pi_scaling_diameter_m" in md and "figure1_handoff.png" in md, "report.md lacks the prediction or a figure")
+# The report says what the run is (scaled gravity, bed size, grains across the crater) and where
+# validation stands, and rounds its numbers: no value in its table carries more than 3 digits.
+t.check("What this run is" in md and "not Ryugu's" in md and "grain diameters" in md,
+        "report.md does not say what the default run is")
+t.check("## Validation" in md, "report.md lacks the validation section")
+import re  # noqa: E402
+long_numbers = [token for line in md.splitlines() if line.startswith("| ")
+                for token in re.findall(r"\d*\.\d+", line)
+                if len(token.replace(".", "").lstrip("0")) > 3]
+t.check(not long_numbers, f"report.md has unrounded numbers: {long_numbers[:3]}")
 print(f"crater diameter {r['crater_diameter_m']} m vs pi-scaling {r['pi_scaling_diameter_m']} m")
 
 # Resuming: a run stopped after its first frame goes on from the checkpoint, which holds the

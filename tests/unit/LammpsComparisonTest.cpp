@@ -32,7 +32,7 @@ velocity all set 0 0 0 units box
 group mover id 2
 velocity mover set 1.0 0.0 0.0 units box
 pair_style granular
-pair_coeff * * hooke ${kn} ${etan} tangential linear_history ${kt} ${xgt} ${mus} rolling sds ${kr} ${gr} ${mur} twisting sds ${ktw} ${gtw} ${mutw} damping velocity
+pair_coeff * * hooke ${kn} ${etan} tangential linear_history ${kt} ${xgt} ${mus} rolling sds ${kr} ${gr} ${mur} twisting sds ${ktw} ${gtw} ${mutw} damping velocity limit_damping
 fix 1 all nve/sphere
 timestep ${dt}
 thermo 0
@@ -75,8 +75,11 @@ Outcome runCraterKit(const ContactParams& c, double dt, int steps) {
 Outcome runLammps(const ContactParams& c, double dt, int steps, const std::string& dir) {
   const double r = 0.05, m = 2000 * 4.0 / 3.0 * M_PI * r * r * r, mu = m / 2, rbar = r / 2;
   const double kN = c.kN, kT = c.tangentialStiffness();
-  const double cN = dashpotCoefficient(kN, c.restitutionN, mu),
-               cT = dashpotCoefficient(kT, c.restitutionT, mu);
+  // CraterKit's normal force never pulls (LAMMPS' limit_damping), with the damping that
+  // keeps ε_n under that clipping (clippedDampingFactor).
+  const double cN =
+      clippedDampingFactor(NormalLawKind::LinearSpringDashpot, c.restitutionN) * std::sqrt(kN * mu);
+  const double cT = dashpotCoefficient(kT, c.restitutionT, mu);
   const double b = c.beta, br = b * rbar;
   std::ofstream(dir + "/in.oblique") << kLammpsInput;
   std::ostringstream cmd;
