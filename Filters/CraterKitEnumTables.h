@@ -7,9 +7,9 @@
 // Plain C++ (no VTK): the unit tests include it without ParaView.
 #pragma once
 
-#include "common/Container.h"
 #include "bed/GranularBed.h"
 #include "bed/SizeDistribution.h"
+#include "common/Container.h"
 #include "common/Error.h"
 #include "dem/DemSolver.h"
 #include "edmd/HardDiskCrater.h"

@@ -52,7 +52,7 @@ from craterkit.report import validation_summary, write_report
 from craterkit.scaling import crater_diameter, formation_time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-RYUGU_GRAVITY = 1.5e-4  # m/s^2, GM/R^2 at the mean radius (PHYSICS.md 4.1)
+RYUGU_GRAVITY = 1.5e-4  # m/s^2, GM/R^2 at the mean radius (docs/physics.md 4.1)
 SCI_CRATER = {"name": "SCI", "diameter": 14.5, "rim_diameter": 18.0, "depth": 2.3}  # m, Zhang et al. 2021
 # The ejecta speed limit of Zhang et al. at Ryugu (1 m/s, three escape speeds) in units of the
 # crater's own speed scale sqrt(g D); other gravities use the same ratio (Froude scaling).

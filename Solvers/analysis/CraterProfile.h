@@ -1,4 +1,4 @@
-// Crater profile and dimensions from particles (issue: CraterProfile; PHYSICS.md §4).
+// Crater profile and dimensions from particles (issue: CraterProfile; docs/physics.md §4).
 //
 // The surface is found in radial × azimuthal bins around the impact axis: in each bin the
 // top of the highest particle that belongs to the bulk (at least `minNeighbours` other
@@ -56,7 +56,7 @@ CraterProfileResult craterProfile(const std::vector<double>& positions,
 CraterMeasures measureProfile(const std::vector<double>& radius, const std::vector<double>& height,
                               double z0, double tolerance = 0.0);
 
-// A crater in a vertical 2D section (the hard-disk model's ground, PHYSICS.md §4.3): the
+// A crater in a vertical 2D section (the hard-disk model's ground, docs/physics.md §4.3): the
 // surface's top in bins of width `bin` along x (bin b centred at (b + 0.5) bin), measured
 // against the original surface z0 around the impact point impactX:
 //   - depth: z0 minus the lowest top (0 when no top is below z0);

@@ -44,7 +44,7 @@ struct FragmentResult {
   double axialLength = 0.0, radialExtent = 0.0, ratio = 0.0, frontSpeed = 0.0;
 };
 
-// Ejecta of a crater (PHYSICS.md §4.3–4.4): particles above the original surface (centre
+// Ejecta of a crater (docs/physics.md §4.3–4.4): particles above the original surface (centre
 // higher than z0 + radius) moving upwards. Their ejection angle is measured from the horizontal
 // between the upward speed and the speed away from the impact axis (a ballistic particle keeps
 // it while gravity is slow to act, as in microgravity), mass-weighted on average; the Maxwell

@@ -160,7 +160,7 @@ ProgressCallback subRange(const ProgressCallback& progress, double lo, double hi
 }
 
 // Settles a loose bed under gravity with the SSDEM solver until its kinetic energy has
-// decayed (PHYSICS.md §7): strong damping, low friction, no rolling resistance.
+// decayed (docs/physics.md §7): strong damping, low friction, no rolling resistance.
 ParticleSet settleBed(const ParticleSet& loose, const GranularBedParams& p, const Container& filled,
                       GranularBedReport& report, const ProgressCallback& progress) {
   const double g = p.settlingGravity;

@@ -3,7 +3,7 @@
 // Monodisperse; uniform in radius on [rmin, rmax]; or a truncated power law with
 // differential number density n(r) ∝ r^-(q+1) on [rmin, rmax], q the cumulative
 // exponent (N(>r) ∝ r^-q, q ≈ 2.5–3 for boulder fields). Sampled by inverting the
-// cumulative distribution (PHYSICS.md §7).
+// cumulative distribution (docs/physics.md §7).
 #pragma once
 
 #include "common/Random.h"

@@ -8,7 +8,7 @@
 //                        Tsuji et al. 1992 (the form LIGGGHTS' hertz model uses).
 // Friction (Schwartz et al. 2012 Eqs. 6-7, 17-19; rolling and twisting spring-dashpot-slider
 // with shape parameter beta, pkdgrav's DEM_ROTATION_DASHPOT after Jiang, Shen & Wang 2015
-// and Zhang et al. 2017, Icarus 294:98): see PHYSICS.md §1.3-1.4 for every equation used here.
+// and Zhang et al. 2017, Icarus 294:98): see docs/physics.md §1.3-1.4 for every equation used here.
 #pragma once
 
 #include <Eigen/Core>
@@ -69,7 +69,7 @@ struct ContactState {
   double overlap;        // x > 0
   double leverP, leverN; // distances from the centres to the contact point (leverN = inf: wall)
   // Velocity of n's surface relative to p's at the contact point:
-  // u = v_n - v_p + l_n (n x w_n) + l_p (n x w_p). (PHYSICS.md §1.1 prints "- l_p"; p's
+  // u = v_n - v_p + l_n (n x w_n) + l_p (n x w_p). (docs/physics.md §1.1 prints "- l_p"; p's
   // contact point is at +l_p n, whose velocity is v_p + w_p x l_p n = v_p - l_p n x w_p.)
   Eigen::Vector3d u;
   Eigen::Vector3d omegaRel; // ω_n - ω_p
@@ -155,7 +155,7 @@ struct Hertz {
   }
 };
 
-// Rotates history vectors with the contact frame (PHYSICS.md §1.3 (a)-(b)); inline: it runs
+// Rotates history vectors with the contact frame (docs/physics.md §1.3 (a)-(b)); inline: it runs
 // for every contact at every step.
 #if defined(__GNUC__)
 __attribute__((always_inline))
@@ -298,8 +298,20 @@ ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants&
 // spring k: τ = π sqrt(m / (2k)) (Schwartz 2012 Eq. 4). The DEM's stability check, the
 // proposed stiffness and chooseStiffnessAndStep (dem/DemSetup.h) all use this one formula.
 inline double pairCollisionTime(double mass, double k) { return M_PI * std::sqrt(0.5 * mass / k); }
+// Duration of an undamped Hertz contact of a sphere (mass m, radius r) with a rigid wall of
+// effective modulus E* = E/(1 - ν²) at impact speed v: 2.868 (m² / (r E*² v))^(1/5) (Hertz 1882;
+// Johnson 1985, Contact Mechanics §11.4). The wall contact is the shortest of a bed (a pair of
+// equal spheres lasts 2^(1/5) times longer).
+inline double hertzCollisionTime(double m, double r, double effectiveModulus, double v) {
+  return 2.868 * std::pow(m * m / (r * effectiveModulus * effectiveModulus * v), 0.2);
+}
+// The Hertz contact's stability time that DemSolver checks the step against: the linear
+// collision time of the wall contact's tangent stiffness at 1 % overlap.
+inline double hertzStabilityTime(double m, double r, double effectiveModulus) {
+  return pairCollisionTime(m, 2.0 * effectiveModulus * std::sqrt(r * 0.01 * r));
+}
 
-// Proposed k_N and time step (Schwartz 2012 Eqs. 4-5, 36-39; PHYSICS.md §1.6).
+// Proposed k_N and time step (Schwartz 2012 Eqs. 4-5, 36-39; docs/physics.md §1.6).
 struct StiffnessProposal {
   double kN;            // N/m
   double collisionTime; // s, undamped, smallest pair

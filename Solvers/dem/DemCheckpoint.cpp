@@ -162,7 +162,7 @@ DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t available) {
   for (std::uint64_t k = 0; k < walls; ++k) {
     Wall wall;
     const auto type = r.pod<std::int32_t>("wall type");
-    if (type < 0 || type > 3)
+    if (type < 0 || type > static_cast<std::int32_t>(Wall::Type::CylinderAbove))
       throw InputError("checkpoint corrupt: unknown wall type");
     wall.type = static_cast<Wall::Type>(type);
     wall.point = r.pod<std::array<double, 3>>("wall");

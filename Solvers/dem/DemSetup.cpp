@@ -20,7 +20,7 @@ std::vector<Wall> containerWalls(const Container& c) {
     walls.push_back(Wall::plane({0, hy, 0}, {0, -1, 0}));
   } else {
     walls.push_back(Wall::bowl({0, 0, 0}, c.bowlRadius));
-    walls.push_back(Wall::cylinder({0, 0, 0}, {0, 0, 1}, c.bowlRadius));
+    walls.push_back(Wall::cylinderAbove({0, 0, 0}, {0, 0, 1}, c.bowlRadius));
   }
   return walls;
 }
@@ -48,7 +48,14 @@ StiffnessChoice chooseStiffnessAndStep(const StiffnessInput& in) {
   } else {
     const double r = in.smallestRadius;
     const double mmin = in.density * 4.0 / 3.0 * M_PI * r * r * r;
-    c.dt = pairCollisionTime(mmin, c.kN) / in.stepsPerCollision;
+    if (in.hertz) {
+      const double E = in.youngsModulus / (1.0 - in.poissonRatio * in.poissonRatio);
+      const double v = std::max(in.maxSpeed, std::sqrt(2.0 * in.gravity * in.bedHeight));
+      const double t = std::min(hertzCollisionTime(mmin, r, E, v), hertzStabilityTime(mmin, r, E));
+      c.dt = t / in.stepsPerCollision;
+    } else {
+      c.dt = pairCollisionTime(mmin, c.kN) / in.stepsPerCollision;
+    }
   }
   return c;
 }
@@ -94,6 +101,9 @@ DemProblem setUpDem(const ParticleSet& bed, const DemSetup& setup) {
   k.normalStiffness = setup.normalStiffness;
   k.tangentialStiffness = setup.contact.kT;
   k.timeStep = setup.timeStep;
+  k.hertz = setup.contact.normalModel == "Hertz";
+  k.youngsModulus = setup.contact.youngsModulus;
+  k.poissonRatio = setup.contact.poissonRatio;
   const StiffnessChoice choice = chooseStiffnessAndStep(k);
   p.contact.kN = choice.kN;
   p.contact.kT = choice.kT;

@@ -2,7 +2,7 @@
 // impactor, the container's walls, and the one choice of stiffness and time step.
 //
 // chooseStiffnessAndStep is the only place that picks k_N and the time step (Schwartz 2012
-// Eqs. 4-5, 36-39; PHYSICS.md §1.6): k_N is the larger of the stiffness that stops the
+// Eqs. 4-5, 36-39; docs/physics.md §1.6): k_N is the larger of the stiffness that stops the
 // fastest expected particle within the allowed overlap and the one that carries the
 // lithostatic load; the step is the undamped collision time of two of the smallest
 // particles over the steps per collision. The DEMIntegrator filter (through setUpDem), the
@@ -25,7 +25,7 @@ namespace craterkit {
 
 // The walls of a bed container: box = floor and four side planes; bowl = the hemispherical
 // shell plus a cylinder of the same radius above its rim (so a bed filled above the rim is
-// held); both open at the top.
+// held), each acting in its own region (below and above the rim plane); both open at the top.
 std::vector<Wall> containerWalls(const Container& container);
 
 // Extent of a bed: lowest particle bottom, highest top, smallest radius and density
@@ -46,6 +46,12 @@ struct StiffnessInput {
   double normalStiffness = 0.0;      // given k_N, N/m; <= 0: chosen
   double tangentialStiffness = -1.0; // given k_T, N/m; < 0: 2/7 k_N (pkdgrav)
   double timeStep = 0.0;             // given, s; <= 0: from k_N
+  // The normal law. Hertz: the step is the Hertz wall contact's duration at the larger of
+  // maxSpeed and the speed of a fall through the bed's height (hertzCollisionTime), never
+  // above the solver's stability time, over stepsPerCollision; k_N is not used by the law.
+  bool hertz = false;
+  double youngsModulus = 0.0; // Pa (Hertz)
+  double poissonRatio = 0.0;  // (Hertz)
 };
 
 struct StiffnessChoice {

@@ -139,13 +139,13 @@ void DemSolver::initialise(bool computeInitialForces) {
 
   // Stability: the shortest contact is the lightest pair (reduced mass m/2).
   const double mmin = *std::min_element(s.mass.begin(), s.mass.end());
-  double k = params_.contact.kN;
   if (params_.contact.normalModel == "Hertz") {
     const double E =
         params_.contact.youngsModulus / (1.0 - std::pow(params_.contact.poissonRatio, 2));
-    k = 2.0 * E * std::sqrt(rmin * 0.01 * rmin); // wall stiffness at 1 % overlap
+    collisionTime_ = hertzStabilityTime(mmin, rmin, E);
+  } else {
+    collisionTime_ = pairCollisionTime(mmin, params_.contact.kN);
   }
-  collisionTime_ = pairCollisionTime(mmin, k);
   const double steps = collisionTime_ / params_.dt;
   if (steps < params_.minStepsPerCollision) {
     std::ostringstream msg;
@@ -249,6 +249,11 @@ void DemSolver::buildNeighbourList() {
         const double d = std::hypot(x[3 * i] - wall.point[0], x[3 * i + 1] - wall.point[1],
                                     x[3 * i + 2] - wall.point[2]);
         near = d > wall.radius - (r[i] + skin_);
+      }
+      if (!near && wall.type == Wall::Type::CylinderAbove) { // may cross the rim plane upwards
+        Wall whole = wall;
+        whole.type = Wall::Type::Cylinder;
+        near = whole.overlap(&x[3 * i], r[i] + skin_, nv, lever) > 0.0;
       }
       if (near)
         wallNear_[i] |= std::uint64_t(1) << w;

@@ -1,6 +1,6 @@
 // Soft-sphere DEM integrator (pkdgrav SSDEM; Schwartz, Richardson & Michel 2012).
 //
-// Kick-drift-kick leapfrog with constant Δt (Schwartz 2012 Eq. 1; PHYSICS.md §1.5):
+// Kick-drift-kick leapfrog with constant Δt (Schwartz 2012 Eq. 1; docs/physics.md §1.5):
 // velocity-dependent forces use predicted velocities and spins v + Δt/2 a. Contacts come
 // from a half Verlet list (pairs i < j within r_i + r_j + skin) built with a cell list and
 // rebuilt only when a particle has moved more than half the skin; contact histories are

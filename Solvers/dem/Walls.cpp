@@ -23,6 +23,8 @@ std::string Wall::typeName(Type t) {
     return "Bowl";
   case Type::Cylinder:
     return "Cylinder";
+  case Type::CylinderAbove:
+    return "CylinderAbove";
   default:
     return "Disk";
   }
@@ -51,6 +53,10 @@ Wall Wall::bowl(std::array<double, 3> c, double r, std::array<double, 3> up) {
 
 Wall Wall::cylinder(std::array<double, 3> p, std::array<double, 3> axis, double r) {
   return makeWall(Type::Cylinder, p, axis, r, "axis");
+}
+
+Wall Wall::cylinderAbove(std::array<double, 3> p, std::array<double, 3> axis, double r) {
+  return makeWall(Type::CylinderAbove, p, axis, r, "axis");
 }
 
 Wall Wall::disk(std::array<double, 3> c, std::array<double, 3> n, double r) {
@@ -114,6 +120,10 @@ double Wall::overlap(const double x[3], double r, double n[3], double& lever) co
     lever = radius - dist;
     return r - lever;
   }
+  case Type::CylinderAbove:
+    if (!(along > 0.0)) // at or below the rim plane the bowl holds the particle
+      return -1.0;
+    [[fallthrough]];
   case Type::Cylinder: {
     double rho[3];
     for (int k = 0; k < 3; ++k)

@@ -1,4 +1,4 @@
-// Event times of hard disks in free flight (PHYSICS.md §6): the closed-form roots that
+// Event times of hard disks in free flight (docs/physics.md §6): the closed-form roots that
 // event-driven molecular dynamics schedules (Alder & Wainwright 1959; Rapaport, "The Art of
 // Molecular Dynamics Simulation", 2nd ed., ch. 14).
 //

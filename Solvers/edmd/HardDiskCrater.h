@@ -1,4 +1,4 @@
-// The 2D hard-disk crater model (the "ball pit" of the third seed, PHYSICS.md §4.3 and §6):
+// The 2D hard-disk crater model (the "ball pit" of the third seed, docs/physics.md §4.3 and §6):
 // a ground of hard disks at rest in a box, struck by one large disk or a clump of small
 // ones, run event by event and stopped exactly at evenly spaced frame times.
 //

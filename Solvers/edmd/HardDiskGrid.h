@@ -1,4 +1,4 @@
-// The cell grid of the hard-disk system (HardDiskSystem.h; PHYSICS.md §6): a uniform grid of
+// The cell grid of the hard-disk system (HardDiskSystem.h; docs/physics.md §6): a uniform grid of
 // cells at least one small-disk diameter wide, each holding an intrusive doubly linked list of
 // its small disks (the forward link sits in the disk's hot record, the backward one beside it),
 // so that a disk's possible partners are the disks of the 3x3 cells around it and a crossing

@@ -1,4 +1,4 @@
-// Event-driven molecular dynamics of hard disks in 2D (PHYSICS.md §6).
+// Event-driven molecular dynamics of hard disks in 2D (docs/physics.md §6).
 //
 // Disks fly ballistically between events (straight lines, or parabolas under uniform
 // gravity along -y) and are advanced lazily: each disk keeps the time of its last update.

@@ -1,4 +1,4 @@
-// Steps 2 and 3 of the SPH → DEM hand-off (PHYSICS.md §3.2, §3.3 steps 3–4; Handoff.h): the
+// Steps 2 and 3 of the SPH → DEM hand-off (docs/physics.md §3.2, §3.3 steps 3–4; Handoff.h): the
 // alpha shape of the compact SPH material (Edelsbrunner & Mücke 1994; CGAL's
 // Fixed_alpha_shape_3, whose α is the squared radius r_α²) and the carving of the settled bed
 // with it. Inside the region the SPH target filled, a bed particle is kept only if its centre

@@ -1,4 +1,4 @@
-// Step 5 of the SPH → DEM hand-off (PHYSICS.md §3.3 steps 2 and 7; Handoff.h): the fast ejecta
+// Step 5 of the SPH → DEM hand-off (docs/physics.md §3.3 steps 2 and 7; Handoff.h): the fast ejecta
 // and the curtain become DEM particles of the bed's grain density with their SPH mass and
 // momentum: one per SPH particle, or (grouped) one per cube of the bed's mean particle diameter
 // at the group's centre of mass with its momentum and, as spin, its angular momentum about that

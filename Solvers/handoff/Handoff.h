@@ -1,4 +1,4 @@
-// The SPH → DEM hand-off of the hybrid method (PHYSICS.md §3; issue: ImpactHandoff).
+// The SPH → DEM hand-off of the hybrid method (docs/physics.md §3; issue: ImpactHandoff).
 //
 // 1. Split the SPH particles into compact material (|v| ≤ EjectaSpeedLimit) and ejecta.
 // 2. Alpha shape (CGAL Fixed_alpha_shape_3; α is the squared radius in CGAL's convention,

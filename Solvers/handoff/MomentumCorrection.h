@@ -1,4 +1,4 @@
-// The last step of the SPH → DEM hand-off (PHYSICS.md §3.3 step 6; Handoff.h): the mapped bed
+// The last step of the SPH → DEM hand-off (docs/physics.md §3.3 step 6; Handoff.h): the mapped bed
 // particles made to carry exactly the linear and angular momentum (about the origin, spin
 // included) of the compact SPH material below the curtain: a uniform velocity shift
 // ΔV = (P_SPH − P_DEM)/M_DEM, then a rigid rotation Δω × (r − r_cm) about their centre of mass

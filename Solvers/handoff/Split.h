@@ -1,6 +1,6 @@
-// Step 1 of the SPH → DEM hand-off (PHYSICS.md §3; Handoff.h): the SPH state split into
+// Step 1 of the SPH → DEM hand-off (docs/physics.md §3; Handoff.h): the SPH state split into
 // compact material (|v| ≤ EjectaSpeedLimit), which the alpha shape and the bed take over, and
-// ejecta faster than the limit, which become particles or leave (PHYSICS.md §3.3, step 2).
+// ejecta faster than the limit, which become particles or leave (docs/physics.md §3.3, step 2).
 // The compact material higher than one alpha radius above the target's surface is the curtain
 // of a late hand-off: it lands, so it becomes particles as the ejecta do. Also the compact
 // material as the later steps search it (positions, support radii, a cell list).

@@ -1,4 +1,4 @@
-// Step 4 of the SPH → DEM hand-off (PHYSICS.md §3.3 step 5; Handoff.h): the compact SPH
+// Step 4 of the SPH → DEM hand-off (docs/physics.md §3.3 step 5; Handoff.h): the compact SPH
 // material's velocity mapped onto the kept bed particles inside the target region. Each takes
 // a kernel-weighted linear fit v(x') ≈ v̄ + G (x' − x̄) of the compact SPH velocities within one
 // support radius (weights: the SPH cubic spline, sph/Kernels.h, times the mass; exact for rigid

@@ -1,8 +1,8 @@
-// Equations of state for the SPH solver, chosen by name at run time (PHYSICS.md §2.4):
+// Equations of state for the SPH solver, chosen by name at run time (docs/physics.md §2.4):
 // Tillotson (Tillotson 1962; as in miluphcuda's pressure.cu), Murnaghan, ideal gas, stiffened gas.
 // Pressure p(ρ, u) in Pa for density ρ (kg/m³) and specific internal energy u (J/kg); the
 // sound speed comes from c² = ∂p/∂ρ|_u + (p/ρ²) ∂p/∂u|_ρ, floored at `soundSpeedFloor`.
-// Late stage (after Raducan & Jutzi 2022; PHYSICS.md §2.8): a Tillotson or Murnaghan law is
+// Late stage (after Raducan & Jutzi 2022; docs/physics.md §2.8): a Tillotson or Murnaghan law is
 // replaced by the linear p = K (ρ/ρ0 − 1), K = ρ0 c², with a low sound speed c, so that the
 // Courant step grows and a run can follow the slow, gravity-driven crater growth.
 #pragma once

@@ -1,5 +1,5 @@
 // Grady–Kipp fracture for the SPH solver, as in Benz & Asphaug (1995) and miluphcuda
-// (PHYSICS.md §2.7). Weibull flaws n(ε) = k ε^m: N ln N flaws for the N particles of a brittle
+// (docs/physics.md §2.7). Weibull flaws n(ε) = k ε^m: N ln N flaws for the N particles of a brittle
 // material, flaw j activating at ε_j = (j / (k V))^{1/m} (V the material's volume), each given
 // to a random particle. A particle's local strain is ε = σ_max / ((1 − D) E), E = 9KG/(3K + G);
 // with n_act of its n_tot flaws active, its damage grows as d(D^⅓)/dt = n_act c_g / R_s,

@@ -1,5 +1,5 @@
 // The SCI-like impact problem for the SPH solver: an impactor sphere striking a porous,
-// granular target under surface gravity (issue: SPHImpact; PHYSICS.md §2 and §4.1).
+// granular target under surface gravity (issue: SPHImpact; docs/physics.md §2 and §4.1).
 //
 // Both bodies are cut from one cubic lattice of spacing dx = 2 a / ParticlesAcrossImpactor,
 // so every particle has the volume dx³ (unless the target is graded, see `coarsening`);

@@ -1,5 +1,5 @@
 // SPH smoothing kernels in 3D with compact support h (the miluphcuda convention: W = 0 for
-// r >= h; a code using support 2h passes 2h). PHYSICS.md §2.1.
+// r >= h; a code using support 2h passes 2h). docs/physics.md §2.1.
 //   CubicSpline: W = 8/(π h³) {6q³ − 6q² + 1 (q < ½); 2(1 − q)³ (½ ≤ q ≤ 1); 0}, q = r/h.
 //   WendlandC2:  W = 21/(2π h³) (1 − q)⁴ (1 + 4q) (Wendland 1995; Dehnen & Aly 2012), no pairing
 //                instability for large neighbour numbers.

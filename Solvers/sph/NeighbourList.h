@@ -1,4 +1,4 @@
-// Neighbour lists for the SPH solver (PHYSICS.md §2): a Verlet list built from cell
+// Neighbour lists for the SPH solver (docs/physics.md §2): a Verlet list built from cell
 // lists, one sparse grid per level of h (√2 apart, so a graded target's fine particles do not
 // scan cells sized for its coarse ones), with a margin per particle (skin h, more for fast
 // ones) for motion and for growth of h, kept over steps until some pair could have come into

@@ -1,4 +1,4 @@
-// Parameters of the SPH solver (PHYSICS.md §2): kernel, materials, artificial viscosity
+// Parameters of the SPH solver (docs/physics.md §2): kernel, materials, artificial viscosity
 // (§2.3), XSPH, smoothing length, density floor, time-step control (§2.8), neighbour-list
 // skin, gravity, periodic box, the late-stage scheme (§2.8) and the domain that ejecta leave.
 #pragma once
@@ -44,10 +44,10 @@ struct SphParams {
   double pointMassAt[3] = {0, 0, 0};
   bool periodic[3] = {false, false, false};
   double boxLo[3] = {0, 0, 0}, boxHi[3] = {1, 1, 1}; // the periodic cell
-  // Late-stage scheme (after Raducan & Jutzi 2022; PHYSICS.md §2.8): at lateStageTime (negative:
-  // never) every Tillotson or Murnaghan material switches to the linear p = K (α ρ / ρ0 − 1) / α
-  // with K = ρ0 c², c = lateStageSoundSpeed, keeping its Poisson ratio (so G falls by the same
-  // factor, and each particle's deviatoric stress is scaled by it: the elastic strain is
+  // Late-stage scheme (after Raducan & Jutzi 2022; docs/physics.md §2.8): at lateStageTime
+  // (negative: never) every Tillotson or Murnaghan material switches to the linear p = K (α ρ / ρ0
+  // − 1) / α with K = ρ0 c², c = lateStageSoundSpeed, keeping its Poisson ratio (so G falls by the
+  // same factor, and each particle's deviatoric stress is scaled by it: the elastic strain is
   // unchanged); the distention is frozen. The Courant step grows by about the ratio of the old and
   // new sound speeds, so a run can follow the slow, gravity-driven crater growth after the shock.
   double lateStageTime = -1.0; // s

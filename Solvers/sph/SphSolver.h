@@ -1,4 +1,4 @@
-// The SPH solver for the shock and excavation stage (PHYSICS.md §2).
+// The SPH solver for the shock and excavation stage (docs/physics.md §2).
 //
 // Continuity (integrated or summation density), momentum with the full stress tensor and
 // energy in the symmetric forms of §2.2; Monaghan artificial viscosity (§2.3) and optional

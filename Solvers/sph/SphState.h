@@ -1,4 +1,4 @@
-// The particle state of the SPH solver (PHYSICS.md §2.2): positions, velocities, masses,
+// The particle state of the SPH solver (docs/physics.md §2.2): positions, velocities, masses,
 // bulk densities, specific internal energies, smoothing lengths (support radius), deviatoric
 // stress, P–α distention (§2.6) and Grady–Kipp damage (§2.7) per particle, and the totals that
 // the equations conserve (energy E = Σ m (½ v² + u) + potential, momentum, angular momentum).

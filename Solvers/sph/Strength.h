@@ -1,13 +1,13 @@
 // Strength and porosity of solids for the SPH solver.
 //   Elasticity: Hooke's law for the deviatoric stress with the Jaumann rate,
-//     dS/dt = 2G (ε̇ − ⅓ tr ε̇ I) + R S − S R (PHYSICS.md §2.2).
-//   Yield (PHYSICS.md §2.5; Collins, Melosh & Ivanov 2004): S → f S with
+//     dS/dt = 2G (ε̇ − ⅓ tr ε̇ I) + R S − S R (docs/physics.md §2.2).
+//   Yield (docs/physics.md §2.5; Collins, Melosh & Ivanov 2004): S → f S with
 //     von Mises (metals): f = min(Y0/√(3 J2), 1), J2 = ½ S:S;
 //     Drucker–Prager (granular material), matched to the Mohr–Coulomb compression cone:
 //     √J2 ≤ k + 3B p, k = 6c cos φ/(√3 (3 − sin φ)), B = 2 sin φ/(√3 (3 − sin φ)),
 //     tension cut at the cone's apex. Damage D (Grady–Kipp, §2.7) scales Y0 and c by (1 − D)
 //     and a tension p < 0 by (1 − D).
-//   Porosity, P–α (Jutzi et al. 2008; PHYSICS.md §2.6): p = p_s(α ρ, u)/α with the quadratic
+//   Porosity, P–α (Jutzi et al. 2008; docs/physics.md §2.6): p = p_s(α ρ, u)/α with the quadratic
 //     crush curve α(p) = 1 + (α0 − 1)((p_s − p)/(p_s − p_e))² for p_e < p < p_s; α only falls.
 #pragma once
 

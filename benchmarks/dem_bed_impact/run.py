@@ -26,7 +26,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 
-# pkdgrav "moderate" regolith coefficients (PHYSICS.md §1.7).
+# pkdgrav "moderate" regolith coefficients (docs/physics.md §1.7).
 EPS, MU_S, MU_R, MU_T, BETA = 0.55, 0.6, 1.05, 1.3, 0.5
 
 

@@ -1,4 +1,4 @@
-"""Crater scaling in the gravity regime (PHYSICS.md section 4.2).
+"""Crater scaling in the gravity regime (docs/physics.md section 4.2).
 
 Housen & Holsapple (2011, Icarus 211:856), Table 3, "sand" (cohesionless):
     R (rho/m)^(1/3) = H1 (rho/delta)^((2 + mu - 6 nu)/(3 (2 + mu))) (g a / U^2)^(-mu/(2 + mu))

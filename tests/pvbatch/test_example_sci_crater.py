@@ -3,7 +3,7 @@
 the crater's diameter is within 35 % of the pi-scaling prediction for the run's own parameters,
 the hand-off carried the compact SPH material's momentum over exactly and the dropped ejecta
 account for the rest, the DEM bed lost energy as it settled, the pi-scaling prediction agrees
-with the values computed by hand in PHYSICS.md section 4.2, the impactor's reported depth lies
+with the values computed by hand in docs/physics.md section 4.2, the impactor's reported depth lies
 inside the SPH target, and the pictures and report exist; then that a run resumed after its
 first frame continues from the checkpoint, and that a bad --sph-coarsening is refused."""
 
@@ -40,7 +40,7 @@ t.check(np.allclose(np.add(r["dem_totals_after_handoff"]["momentum_kg_m_s"], r["
 t.check(r["dem_steps"] > 1000, f"only {r['dem_steps']} DEM steps")
 end, start = r["dem_totals_at_end"]["bed_kinetic_energy_J"], r["dem_totals_after_handoff"]["bed_kinetic_energy_J"]
 t.check(end < 0.5 * start, f"the bed did not come to rest: kinetic energy {start:.3g} J -> {end:.3g} J")
-# The scaling law as implemented against PHYSICS.md 4.2 (computed there: 14.5 m at g = 1.5e-4
+# The scaling law as implemented against docs/physics.md 4.2 (computed there: 14.5 m at g = 1.5e-4
 # and 14.9 m at 1.3e-4 for 2 kg of copper at 2 km/s into 1190 kg/m^3).
 t.check(abs(r["pi_scaling_diameter_at_ryugu_m"] - 14.5) < 0.15, f"SCI pi-scaling {r['pi_scaling_diameter_at_ryugu_m']}")
 t.check(abs(crater_diameter(2.0, 2000.0, 8900.0, 1190.0, 1.3e-4) - 14.9) < 0.15, "pi-scaling at 1.3e-4 m/s^2")

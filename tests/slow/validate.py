@@ -86,7 +86,7 @@ def column_collapse(args):
 def sph_column_flank(args):
     """SPH granular column collapse (Drucker-Prager, φ = 30°, plane slab as high as half its
     width, the unit test's set-up at H/12): the flank of the deposit against the friction angle,
-    30° ± 3° (PHYSICS.md §2.9's figure for a cohesionless φ = 30° collapse)."""
+    30° ± 3° (docs/physics.md §2.9's figure for a cohesionless φ = 30° collapse)."""
     text = run([os.path.join(args.build, "bin", "CraterKitUnitTests"),
                 "--gtest_filter=SphSolid.GranularColumnCollapseStandsAtTheFrictionAngle"],
                env={"OMP_NUM_THREADS": "2"})
@@ -115,7 +115,7 @@ def sci_crater_ryugu(args):
     """The SCI crater at Ryugu's gravity (1.5e-4 m/s^2) on the coarsening-15 SPH target with
     30,000 RCP grains, the largest run that fits 45 minutes on two cores (SPH 25 min, bed,
     hand-off and DEM 10 min, recorded 2026-12-02): D within 15 % of 14.5 m, depth within 25 % of
-    2.3 m, rim diameter within 20 % of 18 m (Zhang et al. 2021 and PHYSICS.md §4.1)."""
+    2.3 m, rim diameter within 20 % of 18 m (Zhang et al. 2021 and docs/physics.md §4.1)."""
     r = sci_run(args, "sci_ryugu", 1.5e-4, [30000], ["RCP"], RYUGU_STAGE)[("RCP", 30000)]
     rows = []
     for key, label, tol in (("crater_diameter_m", "diameter", 0.15), ("crater_depth_m", "depth", 0.25),

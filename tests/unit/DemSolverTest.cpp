@@ -60,7 +60,7 @@ std::size_t indexOf(const DemSolver& s, std::int64_t id) {
 } // namespace
 
 TEST(DemContact, DampingCoefficientFormula) {
-  // Schwartz 2012 Eq. 15 at e = 0.55 and 0.8 (PHYSICS.md §1.2: 0.374 and 0.142 sqrt(k mu)).
+  // Schwartz 2012 Eq. 15 at e = 0.55 and 0.8 (docs/physics.md §1.2: 0.374 and 0.142 sqrt(k mu)).
   EXPECT_NEAR(dashpotCoefficient(1.0, 0.55, 1.0), 0.374, 5e-4);
   EXPECT_NEAR(dashpotCoefficient(1.0, 0.8, 1.0), 0.142, 5e-4);
   EXPECT_EQ(dashpotCoefficient(1.0, 1.0, 1.0), 0.0);

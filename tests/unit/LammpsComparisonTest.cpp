@@ -1,5 +1,5 @@
 // The same oblique two-sphere collision in CraterKit and in LAMMPS (pair_style granular with
-// hooke / linear_history / rolling sds / twisting sds, mapped as in PHYSICS.md §1.8).
+// hooke / linear_history / rolling sds / twisting sds, mapped as in docs/physics.md §1.8).
 // Skipped, with a message, when LAMMPS's `lmp` is not installed (scripts/test installs it).
 #include "dem/DemSolver.h"
 
@@ -32,7 +32,8 @@ velocity all set 0 0 0 units box
 group mover id 2
 velocity mover set 1.0 0.0 0.0 units box
 pair_style granular
-pair_coeff * * hooke ${kn} ${etan} tangential linear_history ${kt} ${xgt} ${mus} rolling sds ${kr} ${gr} ${mur} twisting sds ${ktw} ${gtw} ${mutw} damping velocity limit_damping
+pair_coeff * * hooke ${kn} ${etan} tangential linear_history ${kt} ${xgt} ${mus} &
+  rolling sds ${kr} ${gr} ${mur} twisting sds ${ktw} ${gtw} ${mutw} damping velocity limit_damping
 fix 1 all nve/sphere
 timestep ${dt}
 thermo 0

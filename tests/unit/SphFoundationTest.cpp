@@ -83,7 +83,7 @@ TEST(Tillotson, BasaltReferenceStatesAndBranches) {
   EXPECT_EQ(eos.pressure(rho0, 0.0), 0.0);
   EXPECT_NEAR(eos.pressure(1.1 * rho0, 0.0), 26.7e9 * 0.1 + 26.7e9 * 0.01,
               1e-12 * 2.937e9);                                // 2.937 GPa
-  EXPECT_NEAR(eos.pressure(1.1 * rho0, 1e6), 8.87e9, 0.005e9); // PHYSICS.md 2.9
+  EXPECT_NEAR(eos.pressure(1.1 * rho0, 1e6), 8.87e9, 0.005e9); // docs/physics.md 2.9
   // Bulk sound speed at the reference state: sqrt(A / ρ0) = 3145 m/s.
   EXPECT_NEAR(eos.soundSpeed(rho0, 0.0), std::sqrt(26.7e9 / rho0), 0.001 * 3145.0);
   // The hybrid branch joins the compressed and expanded ones at Eiv and Ecv (ρ < ρ0).
