@@ -4,6 +4,7 @@
 #pragma once
 
 #include "common/Error.h"
+#include "common/NamedValue.h"
 #include "common/ParticleSet.h"
 #include "common/Progress.h"
 
@@ -11,19 +12,24 @@
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
+#include <vtkIndent.h>
+#include <vtkInformation.h>
 #include <vtkIntArray.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 #include <vtkTypeInt64Array.h>
 
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <ostream>
 #include <string>
+#include <vector>
 
 namespace craterkit {
 namespace bridge {
@@ -77,6 +83,41 @@ inline void setVertices(vtkPolyData* out, const std::vector<double>& xyz) {
   out->SetVerts(verts);
 }
 
+// Points (3 doubles each) joined in order into polylines of counts[k] points each.
+template <class Count> void setPolyLines(vtkPolyData* out, const std::vector<double>& xyz,
+                                         const std::vector<Count>& counts) {
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  auto lines = vtkSmartPointer<vtkCellArray>::New();
+  vtkIdType next = 0;
+  for (const Count count : counts) {
+    lines->InsertNextCell(static_cast<vtkIdType>(count));
+    for (Count k = 0; k < count; ++k, ++next) {
+      lines->InsertCellPoint(points->GetNumberOfPoints());
+      points->InsertNextPoint(&xyz[3 * next]);
+    }
+  }
+  out->SetPoints(points);
+  out->SetLines(lines);
+}
+
+// Points (3 doubles each) and triangles (3 point indices each).
+inline void setTriangles(vtkPolyData* out, const std::vector<double>& xyz,
+                         const std::vector<long long>& triangles) {
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(xyz.size() / 3));
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+    points->SetPoint(i, &xyz[3 * i]);
+  auto tris = vtkSmartPointer<vtkCellArray>::New();
+  for (std::size_t k = 0; k + 2 < triangles.size(); k += 3)
+    tris->InsertNextCell({static_cast<vtkIdType>(triangles[k]),
+                          static_cast<vtkIdType>(triangles[k + 1]),
+                          static_cast<vtkIdType>(triangles[k + 2])});
+  out->SetPoints(points);
+  out->SetPolys(tris);
+}
+
 // Output times start, start + interval, ..., end (end included), at most `limit` of them.
 inline std::vector<double> outputTimes(double start, double end, double interval,
                                        long limit = 1000000) {
@@ -89,6 +130,21 @@ inline std::vector<double> outputTimes(double start, double end, double interval
   if (end - times.back() > 1e-9 * interval)
     times.push_back(end);
   return times;
+}
+
+// Announces the output times (their first to last as the range).
+inline void setTimeSteps(vtkInformation* info, const std::vector<double>& times) {
+  info->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
+            static_cast<int>(times.size()));
+  const double range[2] = {times.front(), times.back()};
+  info->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+}
+
+// The time a request asks for, else `fallback`.
+inline double requestedTime(vtkInformation* info, double fallback) {
+  return info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+             ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+             : fallback;
 }
 
 // Particles as vertices with the point arrays of ARCHITECTURE.md.
@@ -152,6 +208,29 @@ inline ParticleSet fromPolyData(vtkPointSet* in) {
   return s;
 }
 
+// The SPH state a hand-off starts from (handoff/Handoff.h's SphSnapshot: x, v, mass, h, not
+// included here as sph/SphRun.h has a type of that name too): positions, Velocity, Mass,
+// optional SmoothingLength.
+template <class SphSnapshot> SphSnapshot sphSnapshotOf(vtkPointSet* in) {
+  const vtkIdType n = in->GetNumberOfPoints();
+  vtkDataArray* vel = in->GetPointData()->GetArray("Velocity");
+  vtkDataArray* mass = in->GetPointData()->GetArray("Mass");
+  vtkDataArray* h = in->GetPointData()->GetArray("SmoothingLength");
+  if (n == 0)
+    throw InputError("the SPH input (port 0) has no particles");
+  if (!vel || vel->GetNumberOfComponents() != 3 || !mass)
+    throw InputError("the SPH input (port 0) needs point arrays Velocity (3 components) and Mass");
+  SphSnapshot s;
+  s.x.resize(3 * n), s.v.resize(3 * n), s.mass.resize(n), s.h.assign(n, 0.0);
+  for (vtkIdType i = 0; i < n; ++i) {
+    in->GetPoint(i, &s.x[3 * i]);
+    vel->GetTuple(i, &s.v[3 * i]);
+    s.mass[i] = mass->GetComponent(i, 0);
+    s.h[i] = h ? h->GetComponent(i, 0) : 0.0;
+  }
+  return s;
+}
+
 inline double fieldScalar(vtkFieldData* fd, const char* name, double fallback) {
   vtkDataArray* a = fd ? fd->GetArray(name) : nullptr;
   return a && a->GetNumberOfTuples() > 0 ? a->GetComponent(0, 0) : fallback;
@@ -185,6 +264,28 @@ inline void addField(vtkFieldData* fd, const char* name, const std::string& valu
   array->SetName(name);
   array->InsertNextValue(value);
   fd->AddArray(array);
+}
+
+// One array per value, in order: numbers and vectors as one tuple, series as one number per
+// tuple, texts as strings.
+inline void addFields(vtkFieldData* fd, const std::vector<NamedValue>& values) {
+  for (const NamedValue& v : values) {
+    if (v.isText)
+      addField(fd, v.name.c_str(), v.text);
+    else if (v.isSeries)
+      fd->AddArray(doubleArray(v.name.c_str(), 1, v.values));
+    else
+      addField(fd, v.name.c_str(), v.values.data(), static_cast<int>(v.values.size()));
+  }
+}
+
+// PrintSelf's "Name: value" lines (the proxy test reads them), from name, value pairs.
+inline void printProperties(std::ostream&, vtkIndent) {}
+template <class T, class... Rest> void printProperties(std::ostream& os, vtkIndent indent,
+                                                       const char* name, const T& value,
+                                                       const Rest&... rest) {
+  os << indent << name << ": " << value << "\n";
+  printProperties(os, indent, rest...);
 }
 
 // Progress in [lo, hi] of the algorithm's own range; abort when ParaView asks.

@@ -30,12 +30,8 @@ int vtkCraterKitDEMIntegrator::RequestInformation(vtkInformation*,
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   if (inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
     start = inInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS())[0];
-  const std::vector<double> times =
-      craterkit::bridge::outputTimes(start, this->EndTime, this->OutputInterval);
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
-               static_cast<int>(times.size()));
-  const double range[2] = {times.front(), times.back()};
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  craterkit::bridge::setTimeSteps(
+      outInfo, craterkit::bridge::outputTimes(start, this->EndTime, this->OutputInterval));
   return 1;
 }
 
@@ -84,11 +80,7 @@ void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input) {
     for (int k = 0; k < 3 && size && size->GetNumberOfComponents() == 3; ++k)
       box.boxSize[k] = size->GetComponent(0, k);
   }
-  if (type == "Box" || type == "Bowl") {
-    setup.walls = DemSetup::Walls::Container;
-    box.type = type == "Box" ? craterkit::Container::Type::Box : craterkit::Container::Type::Bowl;
-  } else if (walls == enums::DemContainer::Cylinder)
-    setup.walls = DemSetup::Walls::Cylinder;
+  chooseWalls(setup, type, walls == enums::DemContainer::Cylinder);
 
   const DemProblem problem = setUpDem(bridge::fromPolyData(input), setup);
   this->Run = std::make_unique<DemRun>(problem.particles, problem.params,
@@ -114,9 +106,7 @@ int vtkCraterKitDEMIntegrator::RequestData(vtkInformation*, vtkInformationVector
       return 0;
     this->RunBuildTime.Modified();
   }
-  double t = this->Run->time();
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
-    t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  const double t = bridge::requestedTime(outInfo, this->Run->time());
   const std::string checkpoint = this->CheckpointFile;
   const bool ok = bridge::run(this, [&] {
     this->Run->advanceTo(t, bridge::progressOf(this), checkpoint, this->CheckpointInterval);
@@ -134,23 +124,7 @@ int vtkCraterKitDEMIntegrator::RequestData(vtkInformation*, vtkInformationVector
   bridge::toPolyData(solver.particles(), output);
   vtkFieldData* fd = output->GetFieldData();
   fd->ShallowCopy(input->GetFieldData());
-  const DemDiagnostics d = solver.diagnostics();
-  const double time = this->Run->time();
-  bridge::addField(fd, "Time", time);
-  bridge::addField(fd, "Step", static_cast<double>(d.step));
-  bridge::addField(fd, "TimeStep", solver.params().dt);
-  bridge::addField(fd, "NormalStiffness", solver.params().contact.kN);
-  bridge::addField(fd, "KineticEnergy", d.kineticEnergy);
-  bridge::addField(fd, "RotationalEnergy", d.rotationalEnergy);
-  bridge::addField(fd, "ElasticEnergy", d.elasticEnergy);
-  bridge::addField(fd, "GravitationalEnergy", d.gravitationalEnergy);
-  bridge::addField(fd, "TotalMomentum", d.momentum.data(), 3);
-  bridge::addField(fd, "TotalAngularMomentum", d.angularMomentum.data(), 3);
-  bridge::addField(fd, "MaxOverlap", d.maxOverlap);
-  bridge::addField(fd, "Contacts", static_cast<double>(d.contacts));
-  bridge::addField(fd, "OverlapWarningSteps", static_cast<double>(solver.overlapWarnings()));
-  const double g[3] = {this->SurfaceGravity[0], this->SurfaceGravity[1], this->SurfaceGravity[2]};
-  bridge::addField(fd, "Gravity", g, 3);
+  bridge::addFields(fd, demFields(*this->Run, this->SurfaceGravity));
   // The pipeline time is the requested one (the state is the first step at or after it;
   // field data "Time" holds the exact simulated time).
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);

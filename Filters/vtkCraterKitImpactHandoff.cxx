@@ -7,7 +7,6 @@
 #include "handoff/Handoff.h"
 
 #include <vtkAlgorithm.h>
-#include <vtkCellArray.h>
 #include <vtkDataArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -58,30 +57,6 @@ int vtkCraterKitImpactHandoff::RequestUpdateExtent(vtkInformation*,
   return 1;
 }
 
-namespace {
-// The SPH state: positions, Velocity, Mass, optional SmoothingLength.
-craterkit::SphSnapshot sphOf(vtkPointSet* in) {
-  const vtkIdType n = in->GetNumberOfPoints();
-  vtkDataArray* vel = in->GetPointData()->GetArray("Velocity");
-  vtkDataArray* mass = in->GetPointData()->GetArray("Mass");
-  vtkDataArray* h = in->GetPointData()->GetArray("SmoothingLength");
-  if (n == 0)
-    throw craterkit::InputError("the SPH input (port 0) has no particles");
-  if (!vel || vel->GetNumberOfComponents() != 3 || !mass)
-    throw craterkit::InputError(
-        "the SPH input (port 0) needs point arrays Velocity (3 components) and Mass");
-  craterkit::SphSnapshot s;
-  s.x.resize(3 * n), s.v.resize(3 * n), s.mass.resize(n), s.h.assign(n, 0.0);
-  for (vtkIdType i = 0; i < n; ++i) {
-    in->GetPoint(i, &s.x[3 * i]);
-    vel->GetTuple(i, &s.v[3 * i]);
-    s.mass[i] = mass->GetComponent(i, 0);
-    s.h[i] = h ? h->GetComponent(i, 0) : 0.0;
-  }
-  return s;
-}
-} // namespace
-
 int vtkCraterKitImpactHandoff::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                            vtkInformationVector* outputVector) {
   using namespace craterkit;
@@ -98,7 +73,7 @@ int vtkCraterKitImpactHandoff::RequestData(vtkInformation*, vtkInformationVector
   g = g && g->GetNumberOfComponents() == 3 ? g : nullptr;
   HandoffResult r;
   const bool ok = b::run(this, [&] {
-    const SphSnapshot s = sphOf(sphIn);
+    const SphSnapshot s = b::sphSnapshotOf<SphSnapshot>(sphIn);
     const ParticleSet bed = b::fromPolyData(bedIn);
     TargetRegion region;
     const std::string shape = b::fieldString(sfd, "TargetShape");
@@ -152,32 +127,19 @@ int vtkCraterKitImpactHandoff::RequestData(vtkInformation*, vtkInformationVector
   b::addField(fd, "Time", b::fieldScalar(sfd, "Time", 0.0));
   if (g)
     b::addField(fd, "Gravity", g->GetTuple3(0), 3);
-  for (const HandoffFigure& f : reportedFigures(r))
-    b::addField(fd, f.name.c_str(), f.values.data(), static_cast<int>(f.values.size()));
+  b::addFields(fd, reportedFigures(r));
 
   vtkPolyData* surface = vtkPolyData::GetData(outputVector, 1);
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(r.surfacePoints.size() / 3));
-  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
-    points->SetPoint(i, &r.surfacePoints[3 * i]);
-  auto tris = vtkSmartPointer<vtkCellArray>::New();
-  for (std::size_t k = 0; k + 2 < r.triangles.size(); k += 3)
-    tris->InsertNextCell({r.triangles[k], r.triangles[k + 1], r.triangles[k + 2]});
-  surface->SetPoints(points);
-  surface->SetPolys(tris);
+  b::setTriangles(surface, r.surfacePoints, r.triangles);
   b::addField(surface->GetFieldData(), "AlphaRadius", r.alphaRadius);
   return 1;
 }
 
 void vtkCraterKitImpactHandoff::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "EjectaSpeedLimit: " << this->EjectaSpeedLimit << "\n";
-  os << indent << "Alpha: " << this->Alpha << "\n";
-  os << indent << "MinNeighbours: " << this->MinNeighbours << "\n";
-  os << indent << "HandoffTime: " << this->HandoffTime << "\n";
-  os << indent << "EjectaDensity: " << this->EjectaDensity << "\n";
-  os << indent << "EjectaParticles: " << this->EjectaParticles << "\n";
-  os << indent << "CurtainAsParticles: " << this->CurtainAsParticles << "\n";
-  os << indent << "DropEjectaLandingOutside: " << this->DropEjectaLandingOutside << "\n";
+  craterkit::bridge::printProperties(
+      os, indent, "EjectaSpeedLimit", this->EjectaSpeedLimit, "Alpha", this->Alpha, "MinNeighbours",
+      this->MinNeighbours, "HandoffTime", this->HandoffTime, "EjectaDensity", this->EjectaDensity,
+      "EjectaParticles", this->EjectaParticles, "CurtainAsParticles", this->CurtainAsParticles,
+      "DropEjectaLandingOutside", this->DropEjectaLandingOutside);
 }

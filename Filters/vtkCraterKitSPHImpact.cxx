@@ -23,12 +23,8 @@ vtkCraterKitSPHImpact::~vtkCraterKitSPHImpact() = default;
 int vtkCraterKitSPHImpact::RequestInformation(vtkInformation*, vtkInformationVector**,
                                               vtkInformationVector* outputVector) {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const std::vector<double> times =
-      craterkit::bridge::outputTimes(0.0, this->EndTime, this->OutputInterval, 100000);
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
-               static_cast<int>(times.size()));
-  const double range[2] = {times.front(), times.back()};
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  craterkit::bridge::setTimeSteps(
+      outInfo, craterkit::bridge::outputTimes(0.0, this->EndTime, this->OutputInterval, 100000));
   return 1;
 }
 
@@ -91,9 +87,7 @@ int vtkCraterKitSPHImpact::RequestData(vtkInformation*, vtkInformationVector**,
       return 0;
     this->RunBuildTime.Modified();
   }
-  double t = 0.0;
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
-    t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  double t = b::requestedTime(outInfo, 0.0);
   t = std::max(0.0, std::min(t, this->EndTime));
   const bool ok = b::run(this, [&] {
     this->Run->advanceTo(t, b::progressOf(this), this->CheckpointFile, this->CheckpointInterval);
@@ -121,48 +115,27 @@ int vtkCraterKitSPHImpact::RequestData(vtkInformation*, vtkInformationVector**,
   pd->SetActiveScalars("Pressure");
 
   vtkFieldData* fd = output->GetFieldData();
-  for (const SphImpactField& f :
-       impactFields(solver, this->Setup(), this->Spacing, this->ContainerParticles)) {
-    if (f.isText)
-      b::addField(fd, f.name.c_str(), f.text);
-    else
-      b::addField(fd, f.name.c_str(), f.values.data(), static_cast<int>(f.values.size()));
-  }
+  b::addFields(fd, impactFields(solver, this->Setup(), this->Spacing, this->ContainerParticles));
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
   return 1;
 }
 
 void vtkCraterKitSPHImpact::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "MaterialDirectory: " << this->MaterialDirectory << "\n";
-  os << indent << "ImpactorMaterial: " << this->ImpactorMaterial << "\n";
-  os << indent << "ImpactorMass: " << this->ImpactorMass << "\n";
-  os << indent << "ImpactorRadius: " << this->ImpactorRadius << "\n";
-  os << indent << "ImpactSpeed: " << this->ImpactSpeed << "\n";
-  os << indent << "ImpactAngle: " << this->ImpactAngle << "\n";
-  os << indent << "TargetMaterial: " << this->TargetMaterial << "\n";
-  os << indent << "TargetShape: " << this->TargetShape << "\n";
-  os << indent << "TargetRadius: " << this->TargetRadius << "\n";
-  os << indent << "TargetCoarsening: " << this->TargetCoarsening << "\n";
-  os << indent << "TargetPorosity: " << this->TargetPorosity << "\n";
-  os << indent << "FrictionAngle: " << this->FrictionAngle << "\n";
-  os << indent << "Cohesion: " << this->Cohesion << "\n";
-  os << indent << "SurfaceGravity: " << this->SurfaceGravity << "\n";
-  os << indent << "ParticlesAcrossImpactor: " << this->ParticlesAcrossImpactor << "\n";
-  os << indent << "TargetContainer: " << this->TargetContainer << "\n";
-  os << indent << "EndTime: " << this->EndTime << "\n";
-  os << indent << "OutputInterval: " << this->OutputInterval << "\n";
-  os << indent << "Kernel: " << this->Kernel << "\n";
-  os << indent << "ArtificialViscosityAlpha: " << this->ArtificialViscosityAlpha << "\n";
-  os << indent << "ArtificialViscosityBeta: " << this->ArtificialViscosityBeta << "\n";
-  os << indent << "XSPH: " << this->XSPH << "\n";
-  os << indent << "CourantNumber: " << this->CourantNumber << "\n";
-  os << indent << "MinTimeStep: " << this->MinTimeStep << "\n";
-  os << indent << "LateStageTime: " << this->LateStageTime << "\n";
-  os << indent << "DomainRadius: " << this->DomainRadius << "\n";
-  os << indent << "LateStageSoundSpeed: " << this->LateStageSoundSpeed << "\n";
-  os << indent << "CheckpointFile: " << this->CheckpointFile << "\n";
-  os << indent << "CheckpointInterval: " << this->CheckpointInterval << "\n";
-  os << indent << "ResumeFromCheckpoint: " << this->ResumeFromCheckpoint << "\n";
-  os << indent << "KeptStates: " << this->KeptStates << "\n";
+  craterkit::bridge::printProperties(
+      os, indent, "MaterialDirectory", this->MaterialDirectory, "ImpactorMaterial",
+      this->ImpactorMaterial, "ImpactorMass", this->ImpactorMass, "ImpactorRadius",
+      this->ImpactorRadius, "ImpactSpeed", this->ImpactSpeed, "ImpactAngle", this->ImpactAngle,
+      "TargetMaterial", this->TargetMaterial, "TargetShape", this->TargetShape, "TargetRadius",
+      this->TargetRadius, "TargetCoarsening", this->TargetCoarsening, "TargetPorosity",
+      this->TargetPorosity, "FrictionAngle", this->FrictionAngle, "Cohesion", this->Cohesion,
+      "SurfaceGravity", this->SurfaceGravity, "ParticlesAcrossImpactor",
+      this->ParticlesAcrossImpactor, "TargetContainer", this->TargetContainer, "EndTime",
+      this->EndTime, "OutputInterval", this->OutputInterval, "Kernel", this->Kernel,
+      "ArtificialViscosityAlpha", this->ArtificialViscosityAlpha, "ArtificialViscosityBeta",
+      this->ArtificialViscosityBeta, "XSPH", this->XSPH, "CourantNumber", this->CourantNumber,
+      "MinTimeStep", this->MinTimeStep, "LateStageTime", this->LateStageTime, "DomainRadius",
+      this->DomainRadius, "LateStageSoundSpeed", this->LateStageSoundSpeed, "CheckpointFile",
+      this->CheckpointFile, "CheckpointInterval", this->CheckpointInterval, "ResumeFromCheckpoint",
+      this->ResumeFromCheckpoint, "KeptStates", this->KeptStates);
 }

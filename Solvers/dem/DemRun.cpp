@@ -64,4 +64,25 @@ void DemRun::resumeFrom(const std::string& checkpointPath) {
   params_ = solver_->params();
 }
 
+std::vector<NamedValue> demFields(const DemRun& run, const double* gravity) {
+  const DemSolver& solver = run.solver();
+  const DemDiagnostics d = solver.diagnostics();
+  using V = NamedValue;
+  return {V::number("Time", run.time()),
+          V::number("Step", static_cast<double>(d.step)),
+          V::number("TimeStep", solver.params().dt),
+          V::number("NormalStiffness", solver.params().contact.kN),
+          V::number("KineticEnergy", d.kineticEnergy),
+          V::number("RotationalEnergy", d.rotationalEnergy),
+          V::number("ElasticEnergy", d.elasticEnergy),
+          V::number("GravitationalEnergy", d.gravitationalEnergy),
+          V::vector("TotalMomentum", {d.momentum[0], d.momentum[1], d.momentum[2]}),
+          V::vector("TotalAngularMomentum",
+                    {d.angularMomentum[0], d.angularMomentum[1], d.angularMomentum[2]}),
+          V::number("MaxOverlap", d.maxOverlap),
+          V::number("Contacts", static_cast<double>(d.contacts)),
+          V::number("OverlapWarningSteps", static_cast<double>(solver.overlapWarnings())),
+          V::vector("Gravity", {gravity[0], gravity[1], gravity[2]})};
+}
+
 } // namespace craterkit

@@ -11,11 +11,13 @@
 // writes no checkpoint until it has passed the file's step again.
 #pragma once
 
+#include "common/NamedValue.h"
 #include "common/TimeDrivenRun.h"
 #include "dem/DemSolver.h"
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace craterkit {
 
@@ -44,5 +46,10 @@ private:
   DemParams params_;
   double startTime_;
 };
+
+// What the DEMIntegrator writes as field data, in its order: time, step, step size and normal
+// stiffness, the energies, momenta, largest overlap, contacts, overlap warning steps, and the
+// surface gravity (3 components) the run was set up with.
+std::vector<NamedValue> demFields(const DemRun& run, const double* gravity);
 
 } // namespace craterkit

@@ -112,4 +112,12 @@ DemProblem setUpDem(const ParticleSet& bed, const DemSetup& setup) {
   return out;
 }
 
+void chooseWalls(DemSetup& setup, const std::string& type, bool cylinder) {
+  if (type == "Box" || type == "Bowl") {
+    setup.walls = DemSetup::Walls::Container;
+    setup.container.type = type == "Box" ? Container::Type::Box : Container::Type::Bowl;
+  } else if (cylinder)
+    setup.walls = DemSetup::Walls::Cylinder;
+}
+
 } // namespace craterkit

@@ -19,6 +19,7 @@
 #include "dem/Walls.h"
 
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace craterkit {
@@ -88,6 +89,10 @@ struct DemProblem {
   ParticleSet particles; // the bed and the impactor
   DemParams params;
 };
+
+// The walls of a container named "Box" or "Bowl" (Walls::Container, setup.container's type
+// set); for any other name the cylinder if asked for, else none.
+void chooseWalls(DemSetup& setup, const std::string& containerType, bool cylinder);
 
 // Adds the impactor, builds the walls and chooses the stiffness and step. Throws InputError.
 DemProblem setUpDem(const ParticleSet& bed, const DemSetup& setup);

@@ -37,6 +37,7 @@
 //    the bed does not hold, and only the fastest of them would set the DEM's stiffness.
 #pragma once
 
+#include "common/NamedValue.h"
 #include "common/ParticleSet.h"
 
 #include <array>
@@ -141,11 +142,7 @@ double compactMassRatio(const HandoffResult& r);
 // The figures a hand-off reports, named and ordered as ImpactHandoff's field data: each
 // total's Mass, Momentum and AngularMomentum, the counts, and StepSeconds (split, alpha shape,
 // carve, map, correct, ejecta).
-struct HandoffFigure {
-  std::string name;
-  std::vector<double> values;
-};
-std::vector<HandoffFigure> reportedFigures(const HandoffResult& r);
+std::vector<NamedValue> reportedFigures(const HandoffResult& r);
 
 struct Container;
 // Ejecta stay inside the bed's container (its walls go on above the surface: Container::inside);

@@ -9,16 +9,19 @@ double compactMassRatio(const HandoffResult& r) {
   return below > 0.0 ? r.demMapped.mass / below : 0.0;
 }
 
-std::vector<HandoffFigure> reportedFigures(const HandoffResult& r) {
-  std::vector<HandoffFigure> f;
+std::vector<NamedValue> reportedFigures(const HandoffResult& r) {
+  std::vector<NamedValue> f;
   auto totals = [&](const std::string& prefix, const HandoffTotals& t) {
-    f.push_back({prefix + "Mass", {t.mass}});
+    f.push_back(NamedValue::number(prefix + "Mass", t.mass));
     const auto& p = t.momentum;
     const auto& l = t.angularMomentum;
-    f.push_back({prefix + "Momentum", std::vector<double>(p.begin(), p.end())});
-    f.push_back({prefix + "AngularMomentum", std::vector<double>(l.begin(), l.end())});
+    f.push_back(NamedValue::vector(prefix + "Momentum", std::vector<double>(p.begin(), p.end())));
+    f.push_back(
+        NamedValue::vector(prefix + "AngularMomentum", std::vector<double>(l.begin(), l.end())));
   };
-  auto count = [&](const char* name, double value) { f.push_back({name, {value}}); };
+  auto count = [&](const char* name, double value) {
+    f.push_back(NamedValue::number(name, value));
+  };
   totals("SPHCompact", r.sphCompact);
   totals("SPHEjecta", r.sphEjecta);
   totals("SPHCurtain", r.sphCurtain);
@@ -39,7 +42,8 @@ std::vector<HandoffFigure> reportedFigures(const HandoffResult& r) {
   count("EjectaShrunk", static_cast<double>(r.ejectaShrunk));
   count("BedEvicted", static_cast<double>(r.bedEvicted));
   const HandoffResult::Timing& s = r.seconds;
-  f.push_back({"StepSeconds", {s.split, s.alphaShape, s.carve, s.map, s.correct, s.ejecta}});
+  f.push_back(NamedValue::vector("StepSeconds",
+                                 {s.split, s.alphaShape, s.carve, s.map, s.correct, s.ejecta}));
   return f;
 }
 

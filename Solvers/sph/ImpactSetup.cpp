@@ -280,22 +280,20 @@ void checkImpactTimes(double endTime, double outputInterval, double minTimeStep)
     throw InputError("MinTimeStep must not be negative");
 }
 
-std::vector<SphImpactField> impactFields(const SphSolver& solver, const SphImpactSetup& setup,
-                                         double spacing, std::size_t containerParticles) {
+std::vector<NamedValue> impactFields(const SphSolver& solver, const SphImpactSetup& setup,
+                                     double spacing, std::size_t containerParticles) {
   double P[3], L[3];
   solver.totalMomentum(P);
   solver.totalAngularMomentum(L);
-  auto number = [](const char* name, double v) { return SphImpactField{name, {v}, "", false}; };
-  auto text = [](const char* name, const std::string& v) {
-    return SphImpactField{name, {}, v, true};
-  };
+  auto number = &NamedValue::number;
+  auto text = &NamedValue::string;
   const bool halfSpace = setup.targetShape == SphImpactSetup::Shape::HalfSpace;
   return {number("Time", solver.time()),
           number("Step", static_cast<double>(solver.steps())),
           number("TimeStep", solver.stableStep()),
-          SphImpactField{"Gravity", {0.0, 0.0, -setup.surfaceGravity}, "", false},
-          SphImpactField{"TotalMomentum", {P[0], P[1], P[2]}, "", false},
-          SphImpactField{"TotalAngularMomentum", {L[0], L[1], L[2]}, "", false},
+          NamedValue::vector("Gravity", {0.0, 0.0, -setup.surfaceGravity}),
+          NamedValue::vector("TotalMomentum", {P[0], P[1], P[2]}),
+          NamedValue::vector("TotalAngularMomentum", {L[0], L[1], L[2]}),
           number("KineticEnergy", solver.kineticEnergy()),
           number("InternalEnergyTotal", solver.internalEnergy()),
           number("GravitationalEnergy", solver.potentialEnergy()),

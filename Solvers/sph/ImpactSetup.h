@@ -9,6 +9,7 @@
 // origin, moving at ImpactSpeed at ImpactAngle from the vertical in the x–z plane.
 #pragma once
 
+#include "common/NamedValue.h"
 #include "sph/SphSolver.h"
 
 #include <cstddef>
@@ -65,16 +66,9 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup);
 // (InputError naming the property).
 void checkImpactTimes(double endTime, double outputInterval, double minTimeStep);
 
-// One named value of the SPHImpact output's field data: numbers, or a text.
-struct SphImpactField {
-  std::string name;
-  std::vector<double> values;
-  std::string text;
-  bool isText = false;
-};
 // The run's clock, conserved totals and set-up, in the order the SPHImpact source writes them.
-std::vector<SphImpactField> impactFields(const SphSolver& solver, const SphImpactSetup& setup,
-                                         double spacing, std::size_t containerParticles);
+std::vector<NamedValue> impactFields(const SphSolver& solver, const SphImpactSetup& setup,
+                                     double spacing, std::size_t containerParticles);
 
 // One point array of the SPHImpact output: name, components per particle, values.
 struct SphImpactArray {

@@ -18,7 +18,9 @@ for target in dump ss gzip; do
   exe="$build/fuzz_$target"
   echo "== building fuzz_$target"
   "$clangxx" -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-    -I "$root/Solvers" "$root/Solvers/io/LammpsDump.cpp" "$root/Solvers/io/PkdgravSs.cpp" \
+    -I "$root/Solvers" "$root/Solvers/io/DumpColumns.cpp" "$root/Solvers/io/DumpIndex.cpp" \
+    "$root/Solvers/io/DumpRowParser.cpp" "$root/Solvers/io/DumpWriter.cpp" \
+    "$root/Solvers/io/PkdgravSs.cpp" \
     "$root/Solvers/io/FileBytes.cpp" "$root/Solvers/common/ParticleSet.cpp" \
     "$here/fuzz_$target.cpp" -lz -o "$exe"
   work="$build/corpus_$target"
