@@ -90,7 +90,7 @@ const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress
                                    const std::string& checkpointPath, long long checkpointEvery) {
   goBackTo(
       time, solver_->time(), [&] { return std::make_unique<SphSolver>(initial_, params_); },
-      [&](const SphSnapshot& kept) {
+      [&](const SphKeptState& kept) {
         auto solver = std::make_unique<SphSolver>(kept.state, params_);
         solver->restore(kept.time, kept.steps, kept.nextStep);
         return solver;
@@ -117,7 +117,7 @@ const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress
       aheadOfCheckpoint(solver_->time()))
     checkpoint();
   keep(solver_->time(), [&] {
-    return SphSnapshot{solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep()};
+    return SphKeptState{solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep()};
   });
   return *solver_;
 }

@@ -19,14 +19,14 @@
 namespace craterkit {
 
 // A kept state of an SphRun: the particles and where the solver stood.
-struct SphSnapshot {
+struct SphKeptState {
   SphState state;
   double time;
   std::size_t steps;
   double nextStep;
 };
 
-class SphRun : public TimeDrivenRun<SphSolver, double, SphSnapshot> {
+class SphRun : public TimeDrivenRun<SphSolver, double, SphKeptState> {
 public:
   SphRun(const SphState& initial, const SphParams& params, std::size_t keptStates = 8);
   const SphSolver& advanceTo(double time, const ProgressCallback& progress = {},
