@@ -1,0 +1,104 @@
+// CraterKit side of the bonded hypervelocity benchmark (see run.py beside this file): the
+// headline impact of Watson & Steinhauser 2017 (seed 003) at a chosen particle count.
+//   ck_bonded_bench data FILE PARTICLES    write the set-up as a LAMMPS data file (atom_style
+//                                          bond: lattice, jitter velocities, bonds) and print
+//                                          the law and time step
+//   ck_bonded_bench run PARTICLES STEPS [WARMUP]
+//                                          run WARMUP untimed steps, then STEPS timed ones of
+//                                          the same set-up; print timings
+// Both print one JSON object on the last line.
+#include "bonded/BondedBody.h"
+#include "bonded/BondedSolver.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
+using namespace craterkit;
+
+namespace {
+
+BondedSystem headline(double particles) {
+  BondedImpactParams p; // the paper's headline case: 9.53 mm Al sphere, 6.7 km/s, t/D 0.425
+  p.particleCount = particles;
+  return buildBondedImpact(p);
+}
+
+void writeData(const std::string& path, const BondedSystem& s) {
+  FILE* f = std::fopen(path.c_str(), "w");
+  if (!f)
+    throw std::runtime_error("cannot write " + path);
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], s.positions[3 * i + k]);
+      hi[k] = std::max(hi[k], s.positions[3 * i + k]);
+    }
+  const double pad = 2.0 * s.law.sigma;
+  std::fprintf(f, "CraterKit bonded HVI benchmark\n\n%zu atoms\n2 atom types\n%zu bonds\n"
+                  "1 bond types\n\n", s.size(), s.bonds.size());
+  const char* axis[3] = {"x", "y", "z"};
+  for (int k = 0; k < 3; ++k)
+    std::fprintf(f, "%.17g %.17g %slo %shi\n", lo[k] - pad, hi[k] + pad, axis[k], axis[k]);
+  double mass[2] = {0.0, 0.0}; // one mass per body (Eq. 20)
+  for (std::size_t i = 0; i < s.size(); ++i)
+    mass[s.body[i]] = s.masses[i];
+  std::fprintf(f, "\nMasses\n\n1 %.17g\n2 %.17g\n\nAtoms # bond\n\n", mass[0], mass[1]);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    std::fprintf(f, "%zu %d %d %.17g %.17g %.17g\n", i + 1, s.body[i] + 1, s.body[i] + 1,
+                 s.positions[3 * i], s.positions[3 * i + 1], s.positions[3 * i + 2]);
+  std::fprintf(f, "\nVelocities\n\n");
+  for (std::size_t i = 0; i < s.size(); ++i)
+    std::fprintf(f, "%zu %.17g %.17g %.17g\n", i + 1, s.velocities[3 * i],
+                 s.velocities[3 * i + 1], s.velocities[3 * i + 2]);
+  std::fprintf(f, "\nBonds\n\n");
+  for (std::size_t b = 0; b < s.bonds.size(); ++b)
+    std::fprintf(f, "%zu 1 %u %u\n", b + 1, s.bonds[b].i + 1, s.bonds[b].j + 1);
+  std::fclose(f);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 4) {
+    std::cerr << "usage: ck_bonded_bench data FILE PARTICLES | run PARTICLES STEPS\n";
+    return 2;
+  }
+  const std::string mode = argv[1];
+  if (mode == "data") {
+    const BondedSystem s = headline(std::atof(argv[3]));
+    writeData(argv[2], s);
+    const BondedSolver solver(s); // its time step: the paper's 1e-10 s scaled with sigma
+    std::printf("{\"particles\": %zu, \"bonds\": %zu, \"sigma\": %.17g, \"epsilon\": %.17g, "
+                "\"kappa\": %.17g, \"r_cut\": %.17g, \"r_eq\": %.17g, \"dt\": %.17g}\n",
+                s.size(), s.bonds.size(), s.law.sigma, s.law.epsilon, s.law.kappa, s.law.rCut,
+                s.law.rEq(), solver.timeStep());
+    return 0;
+  }
+  const long steps = std::atol(argv[3]);
+  BondedSolver solver(headline(std::atof(argv[2])));
+  const BondedEnergies e0 = solver.energies();
+  if (argc > 4)
+    solver.advance(static_cast<std::size_t>(std::max(0L, std::atol(argv[4]))));
+  const std::size_t brokenBefore = solver.brokenBonds();
+  const auto start = std::chrono::steady_clock::now();
+  solver.advance(static_cast<std::size_t>(steps));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const BondedEnergies e = solver.energies();
+  const std::size_t n = solver.system().size();
+  std::printf("{\"particles\": %zu, \"steps\": %ld, \"threads\": %d, \"loop_seconds\": %.6g, "
+              "\"particle_steps_per_s\": %.6g, \"broken_bonds\": %zu, \"broken_timed\": %zu, "
+              "\"kinetic_start\": %.10g, "
+              "\"kinetic_end\": %.10g, \"total_start\": %.10g, \"total_end\": %.10g}\n",
+              n, steps, omp_get_max_threads(), seconds, static_cast<double>(n) * steps / seconds,
+              solver.brokenBonds(), solver.brokenBonds() - brokenBefore, e0.kinetic, e.kinetic,
+              e0.total(), e.total());
+  return 0;
+}
