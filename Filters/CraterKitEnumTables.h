@@ -9,6 +9,7 @@
 
 #include "bed/GranularBed.h"
 #include "bed/SizeDistribution.h"
+#include "bonded/BondedBody.h"
 #include "common/Container.h"
 #include "common/Error.h"
 #include "dem/DemSolver.h"
@@ -131,6 +132,12 @@ inline const Table<SphParams::Kernel, 2> kKernel{
     {{{0, "CubicSpline", SphParams::Kernel::CubicSpline},
       {1, "WendlandC2", SphParams::Kernel::WendlandC2}}}};
 
+// BondedImpact.
+inline const Table<ProjectileShape, 2> kProjectileShape{
+    "BondedImpact",
+    "ProjectileShape",
+    {{{0, "Sphere", ProjectileShape::Sphere}, {1, "Cylinder", ProjectileShape::Cylinder}}}};
+
 // Every table above, for the checks that go through all of them.
 template <class F> void forEachTable(F&& f) {
   f(kContactLaw);
@@ -144,6 +151,7 @@ template <class F> void forEachTable(F&& f) {
   f(kEjectaParticles);
   f(kTargetShape);
   f(kKernel);
+  f(kProjectileShape);
 }
 
 } // namespace craterkit::enums

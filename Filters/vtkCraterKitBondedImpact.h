@@ -25,13 +25,11 @@
 #include <memory>
 #include <string>
 
-namespace craterkit
-{
+namespace craterkit {
 class BondedRun;
 }
 
-class CRATERKITFILTERS_EXPORT vtkCraterKitBondedImpact : public vtkPolyDataAlgorithm
-{
+class CRATERKITFILTERS_EXPORT vtkCraterKitBondedImpact : public vtkPolyDataAlgorithm {
 public:
   static vtkCraterKitBondedImpact* New();
   vtkTypeMacro(vtkCraterKitBondedImpact, vtkPolyDataAlgorithm);

@@ -76,8 +76,8 @@ void BondedImpactParams::validate() const {
   requirePositive("Epsilon", epsilon);
   requirePositive("Kappa", kappa);
   if (!(rCutOverSigma > ws2017::kTwoToOneSixth) || !std::isfinite(rCutOverSigma))
-    refuse("CutoffRatio (r_cut/sigma)",
-           "must exceed the bond length r_eq/sigma = 2^(1/6) = 1.1225", rCutOverSigma);
+    refuse("CutoffRatio (r_cut/sigma)", "must exceed the bond length r_eq/sigma = 2^(1/6) = 1.1225",
+           rCutOverSigma);
   if (!(referenceSigma >= 0.0) || !std::isfinite(referenceSigma))
     refuse("ReferenceSigma", "must not be negative", referenceSigma);
   if (!(temperature >= 0.0) || !std::isfinite(temperature))
@@ -112,9 +112,8 @@ void checkBondedMemory(double particles, double limit, const char* property) {
   const double bytes = estimateBondedBytes(particles);
   if (bytes > limit) {
     std::ostringstream s;
-    s << "BondedImpact: " << property << " needs about " << bytes / 1e9
-      << " GB for " << particles << " particles, more than the " << limit / 1e9
-      << " GB available";
+    s << "BondedImpact: " << property << " needs about " << bytes / 1e9 << " GB for " << particles
+      << " particles, more than the " << limit / 1e9 << " GB available";
     throw InputError(s.str());
   }
 }
@@ -136,8 +135,8 @@ void formBonds(BondedSystem& system) {
       const double dx = xj[0] - xi[0], dy = xj[1] - xi[1], dz = xj[2] - xi[2];
       const double r2 = dx * dx + dy * dy + dz * dz;
       if (r2 < rc2)
-        mine.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j),
-                        std::sqrt(r2)});
+        mine.push_back(
+            {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), std::sqrt(r2)});
     });
     std::sort(mine.begin(), mine.end(),
               [](const BondedBond& a, const BondedBond& b) { return a.j < b.j; });
@@ -213,8 +212,8 @@ BondedSystem buildBondedImpact(const BondedImpactParams& p) {
       for (long i = -reach; i <= reach; ++i) {
         const double dx = i * a, dy = j * a, dz = k * a;
         const double rr = dy * dy + dz * dz;
-        const bool inside = sphere ? rr + dx * dx <= r * r
-                                   : rr <= r * r && std::abs(dx) <= halfLength;
+        const bool inside =
+            sphere ? rr + dx * dx <= r * r : rr <= r * r && std::abs(dx) <= halfLength;
         if (inside)
           addSite(s, cx + dx, cy + dy, dz, 0);
       }

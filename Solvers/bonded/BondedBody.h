@@ -36,7 +36,7 @@ struct BondedSystem {
   std::vector<std::uint8_t> body; // 0: projectile (or the only body), 1: plate
   std::vector<BondedBond> bonds;
   std::array<double, 3> axis{1.0, 0.0, 0.0}; // impact direction, for the debris cloud
-  double rearFace = 0.0;                      // plate's rear face along the axis
+  double rearFace = 0.0;                     // plate's rear face along the axis
   double impactSpeed = 0.0;
   std::size_t size() const { return masses.size(); }
 };
@@ -44,26 +44,26 @@ struct BondedSystem {
 enum class ProjectileShape { Sphere, Cylinder };
 
 struct BondedImpactParams {
-  double diameter = ws2017::kHeadlineDiameter;               // D (m)
+  double diameter = ws2017::kHeadlineDiameter; // D (m)
   ProjectileShape shape = ProjectileShape::Sphere;
   double cylinderLengthRatio = 1.0;                          // L/D of a cylinder
   double thicknessRatio = ws2017::kHeadlineThicknessRatio;   // t/D
   double plateWidthRatio = ws2017::kHeadlinePlateWidthRatio; // side of the square plate / D
   double projectileDensity = ws2017::kHeadlineDensity;       // kg/m³ (aluminium)
   double plateDensity = ws2017::kHeadlineDensity;
-  double speed = 6700.0;                                     // v0 (m/s)
-  double angle = 0.0;                                        // degrees from the plate normal
-  double spacing = 0.0;           // lattice spacing r_eq (m); 0: from particleCount
-  double particleCount = 2.0e4;   // approximate total when spacing is 0
+  double speed = 6700.0;        // v0 (m/s)
+  double angle = 0.0;           // degrees from the plate normal
+  double spacing = 0.0;         // lattice spacing r_eq (m); 0: from particleCount
+  double particleCount = 2.0e4; // approximate total when spacing is 0
   // Law at referenceSigma (the paper's best fit at the headline size), resized to the run's σ.
-  double epsilon = ws2017::kHeadlineEpsilon;                 // J
-  double kappa = ws2017::kHeadlineKappa;                     // N/m
+  double epsilon = ws2017::kHeadlineEpsilon; // J
+  double kappa = ws2017::kHeadlineKappa;     // N/m
   double rCutOverSigma = 1.5;
-  double referenceSigma = 0.0;    // 0: ws2017::headlineSigma()
-  double temperature = 1e-3;      // k_B T / ε of the jitter
+  double referenceSigma = 0.0; // 0: ws2017::headlineSigma()
+  double temperature = 1e-3;   // k_B T / ε of the jitter
   std::uint64_t seed = 1;
-  double memoryLimit = 0.0;       // bytes; 0: the machine's physical memory
-  void validate() const;          // throws InputError naming the property
+  double memoryLimit = 0.0; // bytes; 0: the machine's physical memory
+  void validate() const;    // throws InputError naming the property
 };
 
 // Bytes a run of n particles and about 3n bonds needs (system, solver and neighbour lists).

@@ -108,8 +108,8 @@ BondedFragmentResult analyseBondedFragments(const std::vector<double>& positions
     lo = std::min(lo, s);
     if (s > hi) {
       hi = s;
-      frontVelocity = velocities[3 * i] * e[0] + velocities[3 * i + 1] * e[1] +
-                      velocities[3 * i + 2] * e[2];
+      frontVelocity =
+          velocities[3 * i] * e[0] + velocities[3 * i + 1] * e[1] + velocities[3 * i + 2] * e[2];
     }
   }
   if (out.cloudParticles > 0) {

@@ -26,8 +26,8 @@ namespace craterkit {
 struct DebrisCloudParams {
   std::array<double, 3> axis{1.0, 0.0, 0.0};
   std::array<double, 3> origin{0.0, 0.0, 0.0};
-  double cloudStart = 0.0;   // the plate's rear face along the axis
-  double impactSpeed = 0.0;  // v0; 0 leaves v_a / v0 at 0
+  double cloudStart = 0.0;  // the plate's rear face along the axis
+  double impactSpeed = 0.0; // v0; 0 leaves v_a / v0 at 0
 };
 
 struct BondedFragmentResult {
@@ -35,7 +35,7 @@ struct BondedFragmentResult {
   std::vector<std::size_t> fragmentSize; // particles per fragment, decreasing
   std::vector<double> fragmentMass;      // same order
   std::size_t cloudParticles = 0, cloudFragments = 0;
-  double fragmentation = 0.0;            // F of the cloud, Eq. 21
+  double fragmentation = 0.0;                                // F of the cloud, Eq. 21
   double axialLength = 0.0, radialExtent = 0.0, ratio = 0.0; // L_a, L_r, R
   double axialVelocity = 0.0, axialVelocityRatio = 0.0;      // v_a, v_a / v0
 };

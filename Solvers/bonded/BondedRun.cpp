@@ -69,11 +69,10 @@ void BondedRun::resumeFrom(const std::string& checkpointPath) {
   auto solver = std::make_unique<BondedSolver>(BondedSolver::readCheckpoint(checkpointPath));
   if (solver->system().size() != initial_.size() ||
       solver->system().bonds.size() != initial_.bonds.size())
-    throw InputError(checkpointPath + ": the bonded checkpoint has " +
-                     std::to_string(solver->system().size()) + " particles and " +
-                     std::to_string(solver->system().bonds.size()) + " bonds, this set-up " +
-                     std::to_string(initial_.size()) + " and " +
-                     std::to_string(initial_.bonds.size()));
+    throw InputError(
+        checkpointPath + ": the bonded checkpoint has " + std::to_string(solver->system().size()) +
+        " particles and " + std::to_string(solver->system().bonds.size()) + " bonds, this set-up " +
+        std::to_string(initial_.size()) + " and " + std::to_string(initial_.bonds.size()));
   const long long step = static_cast<long long>(solver->stepCount());
   resumed(std::move(solver), step);
 }

@@ -308,8 +308,7 @@ BondedEnergies BondedSolver::energies() const {
     const double dx = x[3 * bond.j] - x[3 * bond.i], dy = x[3 * bond.j + 1] - x[3 * bond.i + 1],
                  dz = x[3 * bond.j + 2] - x[3 * bond.i + 2];
     double unused;
-    return ws2017::bondSpring(std::sqrt(dx * dx + dy * dy + dz * dz), bond.rest, law.kappa,
-                              unused);
+    return ws2017::bondSpring(std::sqrt(dx * dx + dy * dy + dz * dz), bond.rest, law.kappa, unused);
   });
   e.dissipated = dissipated_;
   return e;

@@ -31,9 +31,9 @@
 namespace craterkit {
 
 struct BondedSolverParams {
-  double timeStep = 0.0;                                          // s; 0: fraction × period
+  double timeStep = 0.0;                                         // s; 0: fraction × period
   double timeStepFraction = ws2017::referenceTimeStepFraction(); // of the bond period
-  double skin = 0.3;                                              // Verlet skin, units of σ
+  double skin = 0.3;                                             // Verlet skin, units of σ
   void validate() const;
 };
 

@@ -26,9 +26,7 @@ double particleMass(double bodyMass, std::size_t count) {
   return bodyMass / static_cast<double>(count);
 }
 
-double bondPeriod(double mass, double kappa) {
-  return 2.0 * M_PI * std::sqrt(mass / kappa);
-}
+double bondPeriod(double mass, double kappa) { return 2.0 * M_PI * std::sqrt(mass / kappa); }
 
 double headlineSigma() {
   const double d = kHeadlineDiameter;

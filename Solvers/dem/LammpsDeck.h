@@ -54,10 +54,10 @@ struct LammpsDeckParams {
 
 // The `pair_style granular` coefficients for one kind of contact (grain pairs, or walls).
 struct LammpsCoefficients {
-  double kN = 0, dampingRestitution = 0;              // hooke / hertz k and Tsuji's e'
-  double kT = 0, xGammaT = 0, muS = 0;               // linear_history / mindlin
-  double kRoll = 0, gammaRoll = 0, muRoll = 0;       // rolling sds
-  double kTwist = 0, gammaTwist = 0, muTwist = 0;    // twisting sds
+  double kN = 0, dampingRestitution = 0;          // hooke / hertz k and Tsuji's e'
+  double kT = 0, xGammaT = 0, muS = 0;            // linear_history / mindlin
+  double kRoll = 0, gammaRoll = 0, muRoll = 0;    // rolling sds
+  double kTwist = 0, gammaTwist = 0, muTwist = 0; // twisting sds
   bool hertz = false;
   std::string pairCoeff() const; // the model words after `pair_coeff * *`
 };

@@ -41,8 +41,10 @@ void writeData(const std::string& path, const BondedSystem& s) {
       hi[k] = std::max(hi[k], s.positions[3 * i + k]);
     }
   const double pad = 2.0 * s.law.sigma;
-  std::fprintf(f, "CraterKit bonded HVI benchmark\n\n%zu atoms\n2 atom types\n%zu bonds\n"
-                  "1 bond types\n\n", s.size(), s.bonds.size());
+  std::fprintf(f,
+               "CraterKit bonded HVI benchmark\n\n%zu atoms\n2 atom types\n%zu bonds\n"
+               "1 bond types\n\n",
+               s.size(), s.bonds.size());
   const char* axis[3] = {"x", "y", "z"};
   for (int k = 0; k < 3; ++k)
     std::fprintf(f, "%.17g %.17g %slo %shi\n", lo[k] - pad, hi[k] + pad, axis[k], axis[k]);
@@ -55,8 +57,8 @@ void writeData(const std::string& path, const BondedSystem& s) {
                  s.positions[3 * i], s.positions[3 * i + 1], s.positions[3 * i + 2]);
   std::fprintf(f, "\nVelocities\n\n");
   for (std::size_t i = 0; i < s.size(); ++i)
-    std::fprintf(f, "%zu %.17g %.17g %.17g\n", i + 1, s.velocities[3 * i],
-                 s.velocities[3 * i + 1], s.velocities[3 * i + 2]);
+    std::fprintf(f, "%zu %.17g %.17g %.17g\n", i + 1, s.velocities[3 * i], s.velocities[3 * i + 1],
+                 s.velocities[3 * i + 2]);
   std::fprintf(f, "\nBonds\n\n");
   for (std::size_t b = 0; b < s.bonds.size(); ++b)
     std::fprintf(f, "%zu 1 %u %u\n", b + 1, s.bonds[b].i + 1, s.bonds[b].j + 1);

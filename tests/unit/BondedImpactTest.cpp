@@ -96,8 +96,8 @@ TEST(BondedImpact, EnergyConservedWithoutBreaking) {
   const double drift = std::abs(last - first) / e0;
   const BondedEnergies e = solver.energies();
   std::printf("[bonded] energy: 216 particles, 1e4 steps, drift %.3e, max |dE|/E0 = %.3e, "
-              "end kinetic/total = %.3f, broken = %zu\n", drift, worst, e.kinetic / e.total(),
-              solver.brokenBonds());
+              "end kinetic/total = %.3f, broken = %zu\n",
+              drift, worst, e.kinetic / e.total(), solver.brokenBonds());
   EXPECT_EQ(solver.stepCount(), 10000u);
   EXPECT_EQ(solver.brokenBonds(), 0u);
   EXPECT_GT(e.repulsive, 0.0);
@@ -126,23 +126,25 @@ TEST(BondedImpact, SizingMakesElasticEnergyIndependentOfResolution) {
     const double uc = ec.repulsive + ec.bond, uf = ef.repulsive + ef.bond;
     const double uu = eu.repulsive + eu.bond;
     std::printf("[bonded] sizing: strain %+.2f: U_coarse = %.6e J, U_fine = %.6e J, ratio %.4f;"
-                " unsized ratio %.3f\n", strain, uc, uf, uf / uc, uu / uc);
+                " unsized ratio %.3f\n",
+                strain, uc, uf, uf / uc, uu / uc);
     EXPECT_GT(uc, 0.0);
     EXPECT_NEAR(uf / uc, 1.0, 0.02);
     EXPECT_GT(std::abs(uu / uc - 1.0), 0.5); // the test can tell a missing resize
   }
   // Δt, a fixed fraction of the bond period 2π√(m/κ) ∝ σ, halves with σ; at the headline σ
   // with m = ρ r_eq³ it is the paper's 1e-10 s.
-  const double dtCoarse = BondedSolver(buildBondedBox(4, 1, 1, a, 2700.0, headlineSizing()))
-                              .timeStep();
-  const double dtFine = BondedSolver(buildBondedBox(8, 1, 1, 0.5 * a, 2700.0, headlineSizing()))
-                            .timeStep();
+  const double dtCoarse =
+      BondedSolver(buildBondedBox(4, 1, 1, a, 2700.0, headlineSizing())).timeStep();
+  const double dtFine =
+      BondedSolver(buildBondedBox(8, 1, 1, 0.5 * a, 2700.0, headlineSizing())).timeStep();
   const double aRef = ws2017::kTwoToOneSixth * ws2017::headlineSigma();
-  const double dtRef = BondedSolver(buildBondedBox(4, 1, 1, aRef, 2700.0, headlineSizing()))
-                           .timeStep();
+  const double dtRef =
+      BondedSolver(buildBondedBox(4, 1, 1, aRef, 2700.0, headlineSizing())).timeStep();
   std::printf("[bonded] time step: headline sigma %.4e m, fraction %.4e of the bond period, "
-              "dt(headline) = %.4e s, dt(a)/dt(a/2) = %.6f\n", ws2017::headlineSigma(),
-              ws2017::referenceTimeStepFraction(), dtRef, dtCoarse / dtFine);
+              "dt(headline) = %.4e s, dt(a)/dt(a/2) = %.6f\n",
+              ws2017::headlineSigma(), ws2017::referenceTimeStepFraction(), dtRef,
+              dtCoarse / dtFine);
   EXPECT_NEAR(dtCoarse / dtFine, 2.0, 1e-12);
   EXPECT_NEAR(dtRef, 1e-10, 1e-22);
 }
@@ -165,8 +167,8 @@ TEST(BondedImpact, SizingMakesWaveSpeedIndependentOfResolution) {
       const std::size_t interface = n / 4, probe = 3 * n / 4;
       const double t = arrivalTime(s, interface, probe, n, sign * 1e-3 * cBond);
       speed[level] = (static_cast<double>(probe - interface) + 0.5) * h / t;
-      const double stiffness = sign > 0 ? 72.0 * s.law.epsilon / (s.law.rEq() * s.law.rEq())
-                                        : s.law.kappa;
+      const double stiffness =
+          sign > 0 ? 72.0 * s.law.epsilon / (s.law.rEq() * s.law.rEq()) : s.law.kappa;
       std::printf("[bonded] wave (%s): %zu sites: c = %.1f m/s, a*sqrt(k/m) = %.1f m/s\n",
                   sign > 0 ? "compression" : "tension", n, speed[level],
                   h * std::sqrt(stiffness / s.masses[0]));
@@ -219,7 +221,8 @@ TEST(BondedImpact, BarBreaksWhereBondsPassCutoffOnly) {
     if (brokenBefore[b])
       middle += sys.bonds[b].i % nx == nx / 2 - 1 && sys.bonds[b].j == sys.bonds[b].i + 1;
   std::printf("[bonded] bar: broken %zu, brute force %zu, at the middle %zu of %zu chains,"
-              " mismatches %zu\n", solver.brokenBonds(), oracle, middle, w * w, mismatches);
+              " mismatches %zu\n",
+              solver.brokenBonds(), oracle, middle, w * w, mismatches);
   EXPECT_EQ(mismatches, 0u);
   EXPECT_EQ(solver.brokenBonds(), oracle);
   EXPECT_EQ(middle, w * w);
@@ -241,12 +244,12 @@ TEST(BondedImpact, SphereOnPlateFragmentsMoreWhenFasterAndConservesMomentum) {
     DebrisCloudParams cloud;
     cloud.cloudStart = s.rearFace;
     cloud.impactSpeed = v0;
-    const BondedFragmentResult f = analyseBondedFragments(
-        s.positions, s.velocities, s.masses, s.bonds, solver.bondBroken(), cloud);
+    const BondedFragmentResult f = analyseBondedFragments(s.positions, s.velocities, s.masses,
+                                                          s.bonds, solver.bondBroken(), cloud);
     const BondedEnergies e = solver.energies();
     std::printf("[bonded] impact v0 = %.0f m/s: N = %zu, steps %llu, broken %zu, cloud %zu, "
-                "F = %.3f, R = %.2f, va/v0 = %.2f, |dP|/P = %.1e, E_diss/E0 = %.3f\n", v0,
-                s.size(), static_cast<unsigned long long>(solver.stepCount()),
+                "F = %.3f, R = %.2f, va/v0 = %.2f, |dP|/P = %.1e, E_diss/E0 = %.3f\n",
+                v0, s.size(), static_cast<unsigned long long>(solver.stepCount()),
                 solver.brokenBonds(), f.cloudParticles, f.fragmentation, f.ratio,
                 f.axialVelocityRatio, dp, e.dissipated / e.total());
     EXPECT_LT(dp, 1e-10);
@@ -270,11 +273,11 @@ TEST(BondedImpact, FragmentsAndCloudMatchTheirDefinitions) {
   EXPECT_EQ(f.fragmentSize, (std::vector<std::size_t>{2, 1, 1}));
   EXPECT_EQ(f.cloudParticles, 3u);
   EXPECT_EQ(f.cloudFragments, 2u);
-  EXPECT_DOUBLE_EQ(f.fragmentation, 2.0 / 3.0);         // Eq. 21
-  EXPECT_DOUBLE_EQ(f.axialLength, 4.0);                 // 6 − 2
-  EXPECT_DOUBLE_EQ(f.radialExtent, 4.0);                // 2 × |(0, −2)|
+  EXPECT_DOUBLE_EQ(f.fragmentation, 2.0 / 3.0); // Eq. 21
+  EXPECT_DOUBLE_EQ(f.axialLength, 4.0);         // 6 − 2
+  EXPECT_DOUBLE_EQ(f.radialExtent, 4.0);        // 2 × |(0, −2)|
   EXPECT_DOUBLE_EQ(f.ratio, 1.0);
-  EXPECT_DOUBLE_EQ(f.axialVelocityRatio, 4.0 / 5.0);    // front particle's v_x / v0
+  EXPECT_DOUBLE_EQ(f.axialVelocityRatio, 4.0 / 5.0); // front particle's v_x / v0
 
   // A real fragmented state: the impact's bond graph against breadth-first search.
   BondedSolver solver(buildBondedImpact(smallImpact(6700.0, 800)));
@@ -338,13 +341,18 @@ TEST(BondedImpact, BadInputRefusedNamingTheProperty) {
   refused([](auto& p) { p.rCutOverSigma = 1.1; }, "CutoffRatio");
   refused([](auto& p) { p.speed = -1.0; }, "ImpactSpeed");
   refused([](auto& p) { p.particleCount = 1e12; }, "ParticleCount");
-  refused([](auto& p) { p.particleCount = 1e6; p.memoryLimit = 1e8; }, "ParticleCount");
+  refused(
+      [](auto& p) {
+        p.particleCount = 1e6;
+        p.memoryLimit = 1e8;
+      },
+      "ParticleCount");
   refused([](auto& p) { p.spacing = 1e-9; }, "Spacing");
   refused([](auto& p) { p.diameter = 0.0; }, "Diameter");
   refused([](auto& p) { p.temperature = -1.0; }, "Temperature");
   refused([](auto& p) { p.angle = 90.0; }, "ImpactAngle");
-  EXPECT_THROW(BondedSolver(buildBondedImpact(smallImpact(100.0, 500)),
-                            BondedSolverParams{-1.0}), InputError);
+  EXPECT_THROW(BondedSolver(buildBondedImpact(smallImpact(100.0, 500)), BondedSolverParams{-1.0}),
+               InputError);
 }
 
 // A checkpoint written mid-impact (bonds breaking) and read back continues bit for bit; one
@@ -367,8 +375,9 @@ TEST(BondedImpact, CheckpointRestartAndThreadsBitIdentical) {
   restored.advance(400);
   omp_set_num_threads(threadsBefore);
   std::printf("[bonded] restart: step %llu, broken %zu at the checkpoint, %zu at the end "
-              "(restored %zu, 2 threads %zu)\n", static_cast<unsigned long long>(one.stepCount()),
-              brokenAtCheckpoint, one.brokenBonds(), restored.brokenBonds(), two.brokenBonds());
+              "(restored %zu, 2 threads %zu)\n",
+              static_cast<unsigned long long>(one.stepCount()), brokenAtCheckpoint,
+              one.brokenBonds(), restored.brokenBonds(), two.brokenBonds());
   EXPECT_GT(brokenAtCheckpoint, 0u);
   EXPECT_GT(one.brokenBonds(), brokenAtCheckpoint);
   for (const BondedSolver* other : {&restored, &two}) {

@@ -1,8 +1,8 @@
 // BondedRun (Watson & Steinhauser 2017 on the shared time-driven protocol): an earlier time
 // gives the state it gave before, a run resumed from its checkpoint continues bit for bit, a
 // checkpoint of another set-up is refused, and a progress callback aborts the run.
-#include "bonded/BondedBody.h"
 #include "bonded/BondedRun.h"
+#include "bonded/BondedBody.h"
 #include "common/Error.h"
 
 #include <gtest/gtest.h>
