@@ -22,13 +22,17 @@
 #include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
+#include <vtkTimeStamp.h>
 #include <vtkTypeInt64Array.h>
 
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <fstream>
+#include <memory>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace craterkit {
@@ -311,6 +315,25 @@ template <class Call> bool run(vtkAlgorithm* self, Call&& call) {
     vtkErrorWithObjectMacro(self, << "solver failure: " << e.what());
   }
   return false;
+}
+
+// A time-dependent algorithm's run: built afresh by BUILD when there is none or when the
+// algorithm or its input (STALE) changed since BUILT; false if building failed (reported).
+template <class Run, class Build> bool ensureRun(vtkAlgorithm* self, std::unique_ptr<Run>& run,
+                                                 vtkTimeStamp& built, bool stale, Build&& build) {
+  if (run && !stale && self->GetMTime() <= built)
+    return true;
+  run.reset();
+  if (!bridge::run(self, std::forward<Build>(build)))
+    return false;
+  built.Modified();
+  return true;
+}
+
+// Continues RUN from its checkpoint file when the user asked to resume and the file exists.
+template <class Run> void resumeIfAsked(Run& run, bool resume, const std::string& file) {
+  if (resume && !file.empty() && std::ifstream(file).good())
+    run.resumeFrom(file);
 }
 
 } // namespace bridge

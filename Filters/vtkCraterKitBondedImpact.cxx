@@ -61,9 +61,8 @@ void vtkCraterKitBondedImpact::BuildRun() {
   sp.timeStep = this->TimeStep;
   this->Run = std::make_unique<BondedRun>(buildBondedImpact(p), sp,
                                           static_cast<std::size_t>(std::max(0, this->KeptStates)));
-  if (this->ResumeFromCheckpoint && !this->CheckpointFile.empty() &&
-      std::ifstream(this->CheckpointFile).good())
-    this->Run->resumeFrom(this->CheckpointFile);
+  craterkit::bridge::resumeIfAsked(*this->Run, this->ResumeFromCheckpoint != 0,
+                                   this->CheckpointFile);
 }
 
 int vtkCraterKitBondedImpact::RequestData(vtkInformation*, vtkInformationVector**,
@@ -73,12 +72,8 @@ int vtkCraterKitBondedImpact::RequestData(vtkInformation*, vtkInformationVector*
   using namespace craterkit;
   namespace b = craterkit::bridge;
 
-  if (!this->Run || this->GetMTime() > this->RunBuildTime) {
-    this->Run.reset();
-    if (!b::run(this, [&] { this->BuildRun(); }))
-      return 0;
-    this->RunBuildTime.Modified();
-  }
+  if (!b::ensureRun(this, this->Run, this->RunBuildTime, false, [&] { this->BuildRun(); }))
+    return 0;
   const double t = std::max(0.0, std::min(b::requestedTime(outInfo, 0.0), this->EndTime));
   BondedFragmentResult frag;
   const bool ok = b::run(this, [&] {

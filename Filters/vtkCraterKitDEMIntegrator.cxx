@@ -86,9 +86,7 @@ void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input) {
   this->Run = std::make_unique<DemRun>(problem.particles, problem.params,
                                        bridge::fieldScalar(fd, "Time", 0.0),
                                        static_cast<std::size_t>(std::max(0, this->KeptStates)));
-  if (this->ResumeFromCheckpoint && !this->CheckpointFile.empty() &&
-      std::ifstream(this->CheckpointFile).good())
-    this->Run->resumeFrom(this->CheckpointFile);
+  bridge::resumeIfAsked(*this->Run, this->ResumeFromCheckpoint != 0, this->CheckpointFile);
   this->WarningsShown = 0;
 }
 
@@ -99,13 +97,9 @@ int vtkCraterKitDEMIntegrator::RequestData(vtkInformation*, vtkInformationVector
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   using namespace craterkit;
 
-  if (!this->Run || this->GetMTime() > this->RunBuildTime ||
-      input->GetMTime() > this->RunBuildTime) {
-    this->Run.reset();
-    if (!bridge::run(this, [&] { this->BuildRun(input); }))
-      return 0;
-    this->RunBuildTime.Modified();
-  }
+  if (!bridge::ensureRun(this, this->Run, this->RunBuildTime,
+                         input->GetMTime() > this->RunBuildTime, [&] { this->BuildRun(input); }))
+    return 0;
   const double t = bridge::requestedTime(outInfo, this->Run->time());
   const std::string checkpoint = this->CheckpointFile;
   const bool ok = bridge::run(this, [&] {

@@ -69,9 +69,8 @@ void vtkCraterKitSPHImpact::BuildRun() {
   this->ContainerParticles = problem.containerParticles;
   this->Run = std::make_unique<SphRun>(problem.state, p,
                                        static_cast<std::size_t>(std::max(0, this->KeptStates)));
-  if (this->ResumeFromCheckpoint && !this->CheckpointFile.empty() &&
-      std::ifstream(this->CheckpointFile).good())
-    this->Run->resumeFrom(this->CheckpointFile);
+  craterkit::bridge::resumeIfAsked(*this->Run, this->ResumeFromCheckpoint != 0,
+                                   this->CheckpointFile);
 }
 
 int vtkCraterKitSPHImpact::RequestData(vtkInformation*, vtkInformationVector**,
@@ -81,12 +80,8 @@ int vtkCraterKitSPHImpact::RequestData(vtkInformation*, vtkInformationVector**,
   using namespace craterkit;
   namespace b = craterkit::bridge;
 
-  if (!this->Run || this->GetMTime() > this->RunBuildTime) {
-    this->Run.reset();
-    if (!b::run(this, [&] { this->BuildRun(); }))
-      return 0;
-    this->RunBuildTime.Modified();
-  }
+  if (!b::ensureRun(this, this->Run, this->RunBuildTime, false, [&] { this->BuildRun(); }))
+    return 0;
   double t = b::requestedTime(outInfo, 0.0);
   t = std::max(0.0, std::min(t, this->EndTime));
   const bool ok = b::run(this, [&] {

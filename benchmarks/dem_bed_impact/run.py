@@ -25,34 +25,16 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.dirname(HERE))
+from bench_common import log, mpirun, run  # noqa: E402
 
 # pkdgrav "moderate" regolith coefficients (docs/physics.md §1.7).
 EPS, MU_S, MU_R, MU_T, BETA = 0.55, 0.6, 1.05, 1.3, 0.5
 
 
-def log(msg):
-    print(msg, flush=True)
-
-
 def damping(k, e, mu):
     l = math.log(e)
     return 2.0 * math.sqrt(k * mu) * (-l) / math.sqrt(math.pi ** 2 + l * l)
-
-
-def run(cmd, env=None, cwd=None):
-    start = time.time()
-    out = subprocess.run(cmd, env=env, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                         text=True)
-    if out.returncode != 0:
-        raise RuntimeError(f"{' '.join(cmd)} failed:\n{out.stdout[-3000:]}")
-    return out.stdout, time.time() - start
-
-
-def mpirun(n):
-    base = ["mpirun", "-np", str(n)]
-    if os.geteuid() == 0:
-        base += ["--allow-run-as-root"]
-    return base + ["--oversubscribe", "--bind-to", "none"]
 
 
 def read_bed(path):

@@ -30,26 +30,8 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-
-
-def log(msg):
-    print(msg, flush=True)
-
-
-def run(cmd, env=None, cwd=None):
-    start = time.time()
-    out = subprocess.run(cmd, env=env, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                         text=True)
-    if out.returncode != 0:
-        raise RuntimeError(f"{' '.join(cmd)} failed:\n{out.stdout[-3000:]}")
-    return out.stdout, time.time() - start
-
-
-def mpirun(n):
-    base = ["mpirun", "-np", str(n)]
-    if os.geteuid() == 0:
-        base += ["--allow-run-as-root"]
-    return base + ["--oversubscribe", "--bind-to", "none"]
+sys.path.insert(0, os.path.dirname(HERE))
+from bench_common import log, mpirun, run  # noqa: E402
 
 
 def last_json(text):
