@@ -13,7 +13,6 @@ references, their sources and the reasons for each tolerance are in docs/validat
 import argparse
 import datetime
 import json
-import math
 import os
 import re
 import subprocess
