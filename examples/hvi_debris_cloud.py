@@ -16,6 +16,7 @@ import sys
 import time
 
 from craterkit import fetch, field_value, load_plugin, print_progress
+from craterkit.cross_section import show_spheres
 from craterkit.report import write_report
 
 # What the paper states in its text (figures give the rest only as plots).
@@ -58,16 +59,7 @@ def render_side_view(simple, source, data, filename, width, label):
     view.ViewTime = field_value(data, "Time")  # the view renders its own time, not the last update
     capped = simple.Calculator(Input=source, ResultArrayName="Fragment",
                                Function="min(FragmentId, 15)")
-    spheres = simple.Glyph(Input=capped, GlyphType="Sphere")
-    spheres.GlyphType.Radius = 1.0
-    spheres.ScaleArray = ["POINTS", "Radius"]
-    spheres.ScaleFactor = 1.0
-    spheres.GlyphMode = "All Points"
-    spheres.OrientationArray = ["POINTS", "No orientation array"]
-    display = simple.Show(spheres, view)
-    simple.ColorBy(display, ("POINTS", "Fragment"))
-    lut = simple.GetColorTransferFunction("Fragment")
-    lut.ApplyPreset("Turbo", True)
+    display, lut = show_spheres(simple, capped, view, "Fragment", "Turbo")
     lut.RescaleTransferFunction(0.0, 15.0)
     display.SetScalarBarVisibility(view, True)
     bar = simple.GetScalarBar(lut, view)

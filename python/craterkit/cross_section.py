@@ -96,18 +96,7 @@ def render_cross_section(source, filename, half_width=None, color_by="Height",
 
     # True sphere glyphs (not point sprites): they occlude and are occluded correctly by
     # the reference lines, and keep their radius in world units.
-    spheres = simple.Glyph(Input=slab, GlyphType="Sphere")
-    spheres.GlyphType.Radius = 1.0
-    spheres.GlyphType.ThetaResolution = 16
-    spheres.GlyphType.PhiResolution = 12
-    spheres.ScaleArray = ["POINTS", "Radius"]
-    spheres.ScaleFactor = 1.0
-    spheres.GlyphMode = "All Points"
-    spheres.OrientationArray = ["POINTS", "No orientation array"]
-    display = simple.Show(spheres, view)
-    simple.ColorBy(display, ("POINTS", color_by))
-    lut = simple.GetColorTransferFunction(color_by)
-    lut.ApplyPreset("Viridis (matplotlib)", True)
+    display, lut = show_spheres(simple, slab, view, color_by, "Viridis (matplotlib)", (16, 12))
     if color_range is not None:
         lut.RescaleTransferFunction(*color_range)
     else:
@@ -182,3 +171,22 @@ def render_cross_section(source, filename, half_width=None, color_by="Height",
     # X connection of xvfb may already be gone.
     simple.Delete(view)
     return slab
+
+
+def show_spheres(simple, source, view, color_by, preset, resolution=None):
+    """Shows SOURCE's particles in VIEW as sphere glyphs of their Radius, coloured by the point
+    array COLOR_BY with the colour map PRESET; RESOLUTION (theta, phi) or the glyph's default.
+    Returns the display and the colour transfer function."""
+    spheres = simple.Glyph(Input=source, GlyphType="Sphere")
+    spheres.GlyphType.Radius = 1.0
+    if resolution:
+        spheres.GlyphType.ThetaResolution, spheres.GlyphType.PhiResolution = resolution
+    spheres.ScaleArray = ["POINTS", "Radius"]
+    spheres.ScaleFactor = 1.0
+    spheres.GlyphMode = "All Points"
+    spheres.OrientationArray = ["POINTS", "No orientation array"]
+    display = simple.Show(spheres, view)
+    simple.ColorBy(display, ("POINTS", color_by))
+    lut = simple.GetColorTransferFunction(color_by)
+    lut.ApplyPreset(preset, True)
+    return display, lut
