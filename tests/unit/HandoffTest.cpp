@@ -3,6 +3,7 @@
 // cavity, ejecta, and named errors.
 #include "handoff/Handoff.h"
 #include "common/Error.h"
+#include "handoff/AlphaShapeCarve.h"
 
 #include <gtest/gtest.h>
 
@@ -158,11 +159,48 @@ TEST(Handoff, UniformTranslationConservesMomentumAndMass) {
   EXPECT_NEAR(c.rmsError, expected, 0.02 * expected);
   EXPECT_LT(c.rmsError, 0.05 * c.rmsSpeed);
   // The shape of an unperturbed lattice: its volume is that of the lattice points' hull-like
-  // body, below N dx³ by about half a spacing over the surface.
+  // body. That body lies inside the hemisphere r <= R cut at the top layer z = -dx/2 (every
+  // point does): an upper bound. It misses N dx³ by the half-spacing layer under the flat top
+  // (0.75 dx/R of the volume) and, under the curved face, by the mean depth of the outermost
+  // points below the sphere, between 0 and half a spacing (at most 1.5 dx/R more): the
+  // shape is 0.925-0.975 of N dx³ at dx = R/30 (the exact box case: AlphaShapeOfABoxLattice).
   const double latticeVolume = static_cast<double>(sph.size()) * kDx * kDx * kDx;
-  EXPECT_GT(c.result.shapeVolume, 0.85 * latticeVolume);
-  EXPECT_LT(c.result.shapeVolume, latticeVolume);
+  const double h = 0.5 * kDx;
+  const double cut = 2.0 / 3.0 * M_PI * kR * kR * kR - M_PI * (kR * kR * h - h * h * h / 3.0);
+  std::printf("shape volume %.4f of N dx^3 (cut hemisphere %.4f)\n",
+              c.result.shapeVolume / latticeVolume, cut / latticeVolume);
+  EXPECT_LT(c.result.shapeVolume, cut);
+  EXPECT_GT(c.result.shapeVolume, (1.0 - 2.25 * kDx / kR) * latticeVolume);
   EXPECT_GT(c.result.triangles.size(), 1000u);
+}
+
+// The exact case of the alpha shape: points on a cubic lattice filling a box, n × n × m of
+// them. Every Delaunay cell of the box's interior has the circumradius of a lattice cube,
+// sqrt(3)/2 dx, below the automatic alpha (1.75 dx), and no cell spans outside the points'
+// hull: the shape is the box between the outermost points, (n-1)² (m-1) dx³, to round-off.
+TEST(Handoff, AlphaShapeOfABoxLattice) {
+  SphSnapshot s;
+  const int n = 12, m = 7;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < m; ++k) {
+        const double x[3] = {i * kDx, j * kDx, -k * kDx - 0.5 * kDx}, v[3] = {0, 0, 0};
+        s.x.insert(s.x.end(), x, x + 3);
+        s.v.insert(s.v.end(), v, v + 3);
+        s.mass.push_back(kRho * kDx * kDx * kDx);
+        s.h.push_back(2.5 * kDx);
+      }
+  std::vector<std::size_t> all(s.size());
+  for (std::size_t i = 0; i < all.size(); ++i)
+    all[i] = i;
+  AlphaShapeCarve shape(s, all, 0.0);
+  double volume = 0.0;
+  std::vector<double> points;
+  std::vector<long long> triangles;
+  shape.buildShape(volume, points, triangles);
+  const double box = (n - 1) * (n - 1) * (m - 1) * kDx * kDx * kDx;
+  EXPECT_NEAR(shape.alphaRadius(), 1.75 * kDx, 1e-12);
+  EXPECT_NEAR(volume, box, 1e-9 * box);
 }
 
 TEST(Handoff, RigidRotationIsMappedFaithfullyAndConserved) {
