@@ -109,8 +109,11 @@ int main(int argc, char** argv) {
       "{\"code\": \"CraterKit\", \"threads\": %d, \"particles\": %zu, \"steps\": %ld, "
       "\"seconds\": %.4f, \"kn\": %.17g, \"dt\": %.17g, \"mass\": %.17g, \"radius\": %.17g, "
       "\"impactor_radius\": %.17g, \"speed\": %.17g, \"side\": %.17g, \"depth\": %.17g, "
-      "\"builds\": %zu, \"contacts\": %zu}\n",
+      "\"builds\": %zu, \"contacts\": %zu, \"damping_factor_n\": %.17g, "
+      "\"damping_factor_t\": %.17g}\n",
       omp_get_max_threads(), s.size(), steps, seconds, k.kN, k.dt, m, kRadius, imp.radius, kSpeed,
-      box.side, box.depth, solver.neighbourBuilds(), solver.diagnostics().contacts);
+      box.side, box.depth, solver.neighbourBuilds(), solver.diagnostics().contacts,
+      clippedDampingFactor(NormalLawKind::LinearSpringDashpot, p.contact.restitutionN),
+      dashpotFactor(p.contact.restitutionT));
   return 0;
 }

@@ -26,13 +26,14 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.dirname(HERE))
 from bench_common import log, mpirun, run  # noqa: E402
 
-# pkdgrav "moderate" regolith coefficients (docs/physics.md §1.7).
+# pkdgrav "moderate" regolith coefficients (docs/physics.md §1.7), as ck_dem_bench.cpp sets them;
+# the dashpot coefficients come from its output (the clipped normal law).
 EPS, MU_S, MU_R, MU_T, BETA = 0.55, 0.6, 1.05, 1.3, 0.5
 
 
-def damping(k, e, mu):
-    l = math.log(e)
-    return 2.0 * math.sqrt(k * mu) * (-l) / math.sqrt(math.pi ** 2 + l * l)
+def damping(k, factor, mu):
+    """Dashpot coefficient C = factor * sqrt(k mu), the factor as CraterKit computes it."""
+    return factor * math.sqrt(k * mu)
 
 
 def read_bed(path):
@@ -72,12 +73,15 @@ def lammps_input(ck, steps):
     m = ck["mass"]
     mu = m / 2.0
     kn, kt = ck["kn"], 2.0 / 7.0 * ck["kn"]
-    cn, ct = damping(kn, EPS, mu), damping(kt, EPS, mu)
+    # CraterKit's normal force never pulls, with the damping that keeps eps_n under that clipping
+    # (ContactModels.h clippedDampingFactor): LAMMPS' limit_damping with the same coefficient.
+    cn, ct = damping(kn, ck["damping_factor_n"], mu), damping(kt, ck["damping_factor_t"], mu)
     rbar = ck["radius"] / 2.0
     br = BETA * rbar
     coeffs = (f"hooke {kn} {cn} tangential linear_history {kt} {ct / cn} {MU_S} "
               f"rolling sds {kn * BETA ** 2} {cn * BETA ** 2} {MU_R * BETA} "
-              f"twisting sds {2 * kt * br * br} {2 * ct * br * br} {MU_T * br * MU_S} damping velocity")
+              f"twisting sds {2 * kt * br * br} {2 * ct * br * br} {MU_T * br * MU_S} damping velocity "
+              "limit_damping")
     side, depth = ck["side"], ck["depth"]
     skin = 0.2 * ck["radius"]
     return f"""units si
@@ -122,13 +126,23 @@ def liggghts_youngs(ck):
     return math.sqrt(lo * hi)
 
 
+def liggghts_restitution(factor):
+    """The restitution LIGGGHTS' hooke law turns into CraterKit's normal damping factor.
+
+    LIGGGHTS: C = 2 sqrt(k m*) (-ln e) / sqrt(pi^2 + ln^2 e) (with limitForce on, no pull);
+    inverted for the factor CraterKit uses under its clipped normal force.
+    """
+    return math.exp(-math.pi * factor / math.sqrt(4.0 - factor * factor))
+
+
 def liggghts_input(ck, steps):
     Y = liggghts_youngs(ck)
+    eps = liggghts_restitution(ck["damping_factor_n"])
     side, depth = ck["side"], ck["depth"]
     skin = 0.2 * ck["radius"]
     model = "model hooke tangential history rolling_friction epsd2"
     walls = "\n".join(
-        f"fix w{i} all wall/gran {model} primitive type 1 {plane} {value}"
+        f"fix w{i} all wall/gran {model} primitive type 1 {plane} {value} limitForce on"
         for i, (plane, value) in enumerate([("zplane", -depth), ("xplane", -side / 2), ("xplane", side / 2),
                                             ("yplane", -side / 2), ("yplane", side / 2)]))
     return f"""atom_style granular
@@ -143,11 +157,11 @@ neighbor {skin} bin
 neigh_modify delay 0
 fix m1 all property/global youngsModulus peratomtype {Y}
 fix m2 all property/global poissonsRatio peratomtype 0.25
-fix m3 all property/global coefficientRestitution peratomtypepair 1 {EPS}
+fix m3 all property/global coefficientRestitution peratomtypepair 1 {eps}
 fix m4 all property/global coefficientFriction peratomtypepair 1 {MU_S}
 fix m5 all property/global coefficientRollingFriction peratomtypepair 1 {MU_R * BETA / 2}
 fix m6 all property/global characteristicVelocity scalar {ck['speed']}
-pair_style gran {model}
+pair_style gran {model} limitForce on
 pair_coeff * *
 timestep {ck['dt']}
 {walls}
