@@ -46,6 +46,32 @@ double radialDistance(const ParticleSet& s, std::size_t i) {
 
 double lubeRunout(double a) { return a < 1.7 ? 1.24 * a : 1.6 * std::sqrt(a); }
 
+double depositEdgeRadius(const std::vector<double>& positions, const std::vector<double>& radii) {
+  const std::size_t n = radii.size();
+  if (n == 0 || positions.size() != 3 * n)
+    throw InputError("deposit edge: no grains, or positions and radii of different lengths");
+  double sum = 0.0, outer = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sum += radii[i];
+    outer = std::max(outer, std::hypot(positions[3 * i], positions[3 * i + 1]));
+  }
+  const double w = 2.0 * sum / static_cast<double>(n), half = 0.5 * M_PI / (2.0 * std::sqrt(3.0));
+  std::vector<double> cover(static_cast<std::size_t>(outer / w) + 2, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(std::hypot(positions[3 * i], positions[3 * i + 1]) / w);
+    cover[k] += M_PI * radii[i] * radii[i];
+  }
+  std::size_t last = 0;
+  for (std::size_t k = 0; k < cover.size(); ++k) {
+    cover[k] /= M_PI * w * w * static_cast<double>(2 * k + 1); // the ring's area
+    if (cover[k] >= half)
+      last = k;
+  }
+  // The last ring is always empty, so the crossing lies between `last` and the ring after it.
+  const double c0 = cover[last], c1 = cover[last + 1];
+  return (static_cast<double>(last) + 0.5 + (c0 - half) / (c0 - c1)) * w;
+}
+
 ColumnCollapseResult runColumnCollapse(const ContactParams& contact, double aspectRatio,
                                        double radiusInGrains) {
   if (!(aspectRatio > 0.05 && aspectRatio < 50.0))
@@ -111,7 +137,8 @@ ColumnCollapseResult runColumnCollapse(const ContactParams& contact, double aspe
   }
   const std::size_t q = static_cast<std::size_t>(0.99 * static_cast<double>(radial.size() - 1));
   std::nth_element(radial.begin(), radial.begin() + static_cast<std::ptrdiff_t>(q), radial.end());
-  out.finalRadius = radial[q] + kR;
+  out.radius99 = radial[q] + kR;
+  out.finalRadius = depositEdgeRadius(s.position, s.radius);
   out.runout = (out.finalRadius - r0) / r0;
   return out;
 }

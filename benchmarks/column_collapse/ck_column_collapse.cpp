@@ -26,9 +26,11 @@ int main(int argc, char** argv) {
     const ColumnCollapseResult r = runColumnCollapse(c, std::atof(argv[1]), std::atof(argv[2]));
     std::printf("{\"mu_s\": %g, \"mu_r\": %g, \"mu_t\": %g, \"particles\": %zu, \"r0_m\": %.4f, "
                 "\"h0_m\": %.4f, \"aspect_ratio\": %.3f, \"r_final_m\": %.4f, \"h_final_m\": %.4f, "
-                "\"runout\": %.3f, \"lube_runout\": %.3f, \"time_s\": %.2f}\n",
+                "\"runout\": %.3f, \"lube_runout\": %.3f, \"r_99_percent_m\": %.4f, "
+                "\"runout_99_percent\": %.3f, \"time_s\": %.2f}\n",
                 c.muS, c.muR, c.muT, r.particles, r.columnRadius, r.columnHeight, r.aspectRatio,
-                r.finalRadius, r.finalHeight, r.runout, lubeRunout(r.aspectRatio), r.time);
+                r.finalRadius, r.finalHeight, r.runout, lubeRunout(r.aspectRatio), r.radius99,
+                (r.radius99 - r.columnRadius) / r.columnRadius, r.time);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ck_column_collapse: %s\n", e.what());
     return 1;
