@@ -78,7 +78,8 @@ int vtkCraterKitBondedImpact::RequestData(vtkInformation*, vtkInformationVector*
   BondedFragmentResult frag;
   const bool ok = b::run(this, [&] {
     frag = analyseDebrisCloud(this->Run->advanceTo(t, b::progressOf(this), this->CheckpointFile,
-                                                   this->CheckpointInterval));
+                                                   this->CheckpointInterval),
+                              this->CloudMassFraction);
   });
   if (!ok) {
     this->Run.reset(); // a failed or aborted run restarts cleanly on the next request
@@ -97,7 +98,7 @@ int vtkCraterKitBondedImpact::RequestData(vtkInformation*, vtkInformationVector*
   pd->AddArray(b::intArray("BondCount", a.bondCount));
   pd->AddArray(b::intArray("FragmentId", a.fragmentId));
   pd->SetActiveScalars("FragmentId");
-  b::addFields(output->GetFieldData(), bondedFields(solver, frag));
+  b::addFields(output->GetFieldData(), bondedFields(solver, frag, this->CloudMassFraction));
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
   return 1;
 }
@@ -113,7 +114,7 @@ void vtkCraterKitBondedImpact::PrintSelf(ostream& os, vtkIndent indent) {
       this->Epsilon, "Kappa", this->Kappa, "CutoffRatio", this->CutoffRatio, "ReferenceSigma",
       this->ReferenceSigma, "Temperature", this->Temperature, "Seed", this->Seed, "TimeStep",
       this->TimeStep, "EndTime", this->EndTime, "OutputInterval", this->OutputInterval,
-      "CheckpointInterval", this->CheckpointInterval, "ResumeFromCheckpoint",
-      this->ResumeFromCheckpoint, "KeptStates", this->KeptStates, "CheckpointFile",
-      this->CheckpointFile);
+      "CloudMassFraction", this->CloudMassFraction, "CheckpointInterval", this->CheckpointInterval,
+      "ResumeFromCheckpoint", this->ResumeFromCheckpoint, "KeptStates", this->KeptStates,
+      "CheckpointFile", this->CheckpointFile);
 }

@@ -85,6 +85,8 @@ public:
   vtkGetMacro(ResumeFromCheckpoint, int);
   vtkSetMacro(KeptStates, int);
   vtkGetMacro(KeptStates, int);
+  vtkSetMacro(CloudMassFraction, double);
+  vtkGetMacro(CloudMassFraction, double);
 
 protected:
   vtkCraterKitBondedImpact();
@@ -121,6 +123,7 @@ private:
   int CheckpointInterval = 0;
   int ResumeFromCheckpoint = 0;
   int KeptStates = 8;
+  double CloudMassFraction = 0.95;
 
   std::unique_ptr<craterkit::BondedRun> Run;
   vtkTimeStamp RunBuildTime;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 namespace craterkit {
 namespace {
@@ -61,6 +62,69 @@ void labelFragments(std::size_t n, const std::vector<BondedBond>& bonds,
   }
 }
 
+// Q_w(q): the smallest w_k such that the particles with w ≤ w_k hold at least q of the mass
+// (pairs of value and mass; sorted here). q = 0 gives the minimum, q = 1 the maximum.
+double massQuantile(std::vector<std::pair<double, double>>& valueMass, double q) {
+  std::sort(valueMass.begin(), valueMass.end());
+  double total = 0.0;
+  for (const auto& vm : valueMass)
+    total += vm.second;
+  double cumulative = 0.0;
+  for (const auto& vm : valueMass)
+    if ((cumulative += vm.second) >= q * total)
+      return vm.first;
+  return valueMass.back().first; // rounding: q * total above the running sum's last value
+}
+
+// Two unit vectors perpendicular to e and to each other: the two side views.
+void sideViews(const double e[3], double e1[3], double e2[3]) {
+  const int k = std::fabs(e[0]) < 0.9 ? 0 : 1; // a basis vector far from e
+  double a[3] = {0.0, 0.0, 0.0};
+  a[k] = 1.0;
+  const double ae = a[0] * e[0] + a[1] * e[1] + a[2] * e[2];
+  double n = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    e1[c] = a[c] - ae * e[c];
+    n += e1[c] * e1[c];
+  }
+  for (int c = 0; c < 3; ++c)
+    e1[c] /= std::sqrt(n);
+  e2[0] = e[1] * e1[2] - e[2] * e1[1];
+  e2[1] = e[2] * e1[0] - e[0] * e1[2];
+  e2[2] = e[0] * e1[1] - e[1] * e1[0];
+}
+
+// The cloud's extents and leading-edge speed as mass quantiles (header: L_a, L_r, v_a).
+void measureCloud(const std::vector<double>& x, const std::vector<double>& v,
+                  const std::vector<double>& m, const std::vector<std::uint8_t>& inCloud,
+                  const double o[3], const double e[3], const DebrisCloudParams& p,
+                  BondedFragmentResult& out) {
+  double e1[3], e2[3];
+  sideViews(e, e1, e2);
+  std::vector<std::pair<double, double>> axial, side, speed;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (!inCloud[i])
+      continue;
+    double s = 0.0, u1 = 0.0, u2 = 0.0, w = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double d = x[3 * i + c] - o[c];
+      s += d * e[c], u1 += d * e1[c], u2 += d * e2[c], w += v[3 * i + c] * e[c];
+    }
+    axial.emplace_back(s, m[i]);
+    side.emplace_back(u1, m[i]);
+    side.emplace_back(u2, m[i]);
+    speed.emplace_back(w, m[i]);
+  }
+  const double qHi = 0.5 * (1.0 + p.massFraction), qLo = 0.5 * (1.0 - p.massFraction);
+  out.leadingEdge = massQuantile(axial, qHi);
+  out.rearEdge = massQuantile(axial, qLo);
+  out.axialLength = out.leadingEdge - out.rearEdge;
+  out.radialExtent = massQuantile(side, qHi) - massQuantile(side, qLo);
+  out.ratio = out.radialExtent > 0.0 ? out.axialLength / out.radialExtent : 0.0;
+  out.axialVelocity = massQuantile(speed, qHi);
+  out.axialVelocityRatio = p.impactSpeed > 0.0 ? out.axialVelocity / p.impactSpeed : 0.0;
+}
+
 } // namespace
 
 BondedFragmentResult analyseBondedFragments(const std::vector<double>& positions,
@@ -77,49 +141,47 @@ BondedFragmentResult analyseBondedFragments(const std::vector<double>& positions
   for (const BondedBond& b : bonds)
     if (b.i >= n || b.j >= n)
       throw InputError("BondedFragments: a bond names a particle that does not exist");
+  if (!(params.massFraction > 0.0 && params.massFraction <= 1.0))
+    throw InputError("BondedFragments: CloudMassFraction must be in (0, 1]");
   const auto& ax = params.axis;
   const double norm = std::sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]);
   if (!(norm > 0.0) || !std::isfinite(norm))
     throw InputError("BondedFragments: the cloud axis must be a non-zero vector");
   const double e[3] = {ax[0] / norm, ax[1] / norm, ax[2] / norm};
+  const double o[3] = {params.origin[0], params.origin[1], params.origin[2]};
 
   BondedFragmentResult out;
   labelFragments(n, bonds, bondBroken, masses, out);
 
-  std::vector<std::uint8_t> seen(out.fragmentSize.size(), 0);
-  double lo = INFINITY, hi = -INFINITY, radial2 = 0.0, frontVelocity = 0.0;
+  // Past the rear face, and not bonded to anything at or before it.
+  std::vector<std::uint8_t> inCloud(n, 0), anchored(out.fragmentSize.size(), 0);
   for (std::size_t i = 0; i < n; ++i) {
-    double d[3], s = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      d[k] = positions[3 * i + k] - params.origin[k];
-      s += d[k] * e[k];
-    }
-    if (!(s > params.cloudStart))
+    double s = 0.0;
+    for (int k = 0; k < 3; ++k)
+      s += (positions[3 * i + k] - o[k]) * e[k];
+    inCloud[i] = s > params.cloudStart;
+    if (!inCloud[i])
+      anchored[out.fragmentId[i]] = 1;
+  }
+  std::vector<double> cloudMassOf(out.fragmentSize.size(), 0.0);
+  std::vector<std::uint8_t> seen(out.fragmentSize.size(), 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    inCloud[i] = inCloud[i] && !anchored[out.fragmentId[i]];
+    if (!inCloud[i])
       continue;
     ++out.cloudParticles;
+    out.cloudMass += masses[i];
     if (!seen[out.fragmentId[i]]) {
       seen[out.fragmentId[i]] = 1;
       ++out.cloudFragments;
     }
-    double p2 = 0.0;
-    for (int k = 0; k < 3; ++k)
-      p2 += (d[k] - s * e[k]) * (d[k] - s * e[k]);
-    radial2 = std::max(radial2, p2);
-    lo = std::min(lo, s);
-    if (s > hi) {
-      hi = s;
-      frontVelocity =
-          velocities[3 * i] * e[0] + velocities[3 * i + 1] * e[1] + velocities[3 * i + 2] * e[2];
-    }
+    cloudMassOf[out.fragmentId[i]] += masses[i];
   }
-  if (out.cloudParticles > 0) {
-    out.fragmentation = static_cast<double>(out.cloudFragments) / out.cloudParticles;
-    out.axialLength = hi - lo;
-    out.radialExtent = 2.0 * std::sqrt(radial2);
-    out.ratio = out.radialExtent > 0.0 ? out.axialLength / out.radialExtent : 0.0;
-    out.axialVelocity = frontVelocity;
-    out.axialVelocityRatio = params.impactSpeed > 0.0 ? frontVelocity / params.impactSpeed : 0.0;
-  }
+  if (out.cloudParticles == 0)
+    return out;
+  out.largestCloudFragmentMass = *std::max_element(cloudMassOf.begin(), cloudMassOf.end());
+  out.fragmentation = static_cast<double>(out.cloudFragments) / out.cloudParticles;
+  measureCloud(positions, velocities, masses, inCloud, o, e, params, out);
   return out;
 }
 

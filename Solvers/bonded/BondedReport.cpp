@@ -2,12 +2,13 @@
 
 namespace craterkit {
 
-BondedFragmentResult analyseDebrisCloud(const BondedSolver& solver) {
+BondedFragmentResult analyseDebrisCloud(const BondedSolver& solver, double massFraction) {
   const BondedSystem& sys = solver.system();
   DebrisCloudParams cloud;
   cloud.axis = sys.axis;
   cloud.cloudStart = sys.rearFace;
   cloud.impactSpeed = sys.impactSpeed;
+  cloud.massFraction = massFraction;
   return analyseBondedFragments(sys.positions, sys.velocities, sys.masses, sys.bonds,
                                 solver.bondBroken(), cloud);
 }
@@ -34,10 +35,13 @@ BondedArrays bondedArrays(const BondedSolver& solver, const BondedFragmentResult
   return a;
 }
 
-std::vector<NamedValue> bondedFields(const BondedSolver& solver, const BondedFragmentResult& f) {
+std::vector<NamedValue> bondedFields(const BondedSolver& solver, const BondedFragmentResult& f,
+                                     double massFraction) {
   const BondedSystem& sys = solver.system();
   const BondedEnergies e = solver.energies();
   auto count = [](std::size_t n) { return static_cast<double>(n); };
+  // Distance behind the plate's rear face (0 while there is no cloud).
+  auto behindPlate = [&](double s) { return f.cloudParticles ? s - sys.rearFace : 0.0; };
   const auto m = solver.momentum();
   return {NamedValue::number("Time", solver.time()),
           NamedValue::number("Step", static_cast<double>(solver.stepCount())),
@@ -53,6 +57,12 @@ std::vector<NamedValue> bondedFields(const BondedSolver& solver, const BondedFra
           NamedValue::number("Fragments", count(f.fragmentSize.size())),
           NamedValue::number("CloudParticles", count(f.cloudParticles)),
           NamedValue::number("CloudFragments", count(f.cloudFragments)),
+          NamedValue::number("CloudMass", f.cloudMass),
+          NamedValue::number("LargestCloudFragmentFraction",
+                             f.cloudMass > 0.0 ? f.largestCloudFragmentMass / f.cloudMass : 0.0),
+          NamedValue::number("CloudMassFraction", massFraction),
+          NamedValue::number("DebrisCloudLeadingEdge", behindPlate(f.leadingEdge)),
+          NamedValue::number("DebrisCloudRearEdge", behindPlate(f.rearEdge)),
           NamedValue::number("DebrisCloudAxialLength", f.axialLength),
           NamedValue::number("DebrisCloudRadialExtent", f.radialExtent),
           NamedValue::number("DebrisCloudRatio", f.ratio),

@@ -1,7 +1,8 @@
 // What a BondedImpact run reports at an output time: the debris-cloud analysis of the current
 // state (BondedFragments, the paper's Section 3 measures), the per-particle arrays the data
 // model names (Radius, Density, Material, Id, BondCount, FragmentId) and the field data list
-// (clock, broken bonds, energies, F, L_a, L_r, R, v_a / v0, set-up figures).
+// (clock, broken bonds, energies, F, the cloud's edges, L_a, L_r, R, v_a / v0, set-up
+// figures).
 #pragma once
 
 #include "bonded/BondedFragments.h"
@@ -13,8 +14,9 @@
 
 namespace craterkit {
 
-// The fragments and debris cloud of the solver's current state, behind the plate's rear face.
-BondedFragmentResult analyseDebrisCloud(const BondedSolver& solver);
+// The fragments and debris cloud of the solver's current state, behind the plate's rear face;
+// massFraction: the cloud's mass inside the measured extents (BondedFragments.h).
+BondedFragmentResult analyseDebrisCloud(const BondedSolver& solver, double massFraction = 0.95);
 
 struct BondedArrays {
   std::vector<double> radius;  // half the equilibrium spacing: neighbours touch at r_eq
@@ -28,6 +30,7 @@ BondedArrays bondedArrays(const BondedSolver& solver, const BondedFragmentResult
                           double projectileDensity, double plateDensity);
 
 std::vector<NamedValue> bondedFields(const BondedSolver& solver,
-                                     const BondedFragmentResult& fragments);
+                                     const BondedFragmentResult& fragments,
+                                     double massFraction = 0.95);
 
 } // namespace craterkit

@@ -269,14 +269,15 @@ TEST(BondedImpact, FragmentsAndCloudMatchTheirDefinitions) {
   DebrisCloudParams cloud;
   cloud.cloudStart = 0.5;
   cloud.impactSpeed = 5.0;
+  cloud.massFraction = 1.0; // the envelope: max − min
   const BondedFragmentResult f = analyseBondedFragments(x, v, m, bonds, broken, cloud);
   EXPECT_EQ(f.fragmentSize, (std::vector<std::size_t>{2, 1, 1}));
   EXPECT_EQ(f.cloudParticles, 3u);
   EXPECT_EQ(f.cloudFragments, 2u);
   EXPECT_DOUBLE_EQ(f.fragmentation, 2.0 / 3.0); // Eq. 21
   EXPECT_DOUBLE_EQ(f.axialLength, 4.0);         // 6 − 2
-  EXPECT_DOUBLE_EQ(f.radialExtent, 4.0);        // 2 × |(0, −2)|
-  EXPECT_DOUBLE_EQ(f.ratio, 1.0);
+  EXPECT_DOUBLE_EQ(f.radialExtent, 3.0);        // side views: y up to 1, z down to −2
+  EXPECT_DOUBLE_EQ(f.ratio, 4.0 / 3.0);
   EXPECT_DOUBLE_EQ(f.axialVelocityRatio, 4.0 / 5.0); // front particle's v_x / v0
 
   // A real fragmented state: the impact's bond graph against breadth-first search.
