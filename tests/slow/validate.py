@@ -175,7 +175,7 @@ HVI_PAPER_SPACING = 2.05e-4  # the paper's lattice: 7.4e5 particles in the headl
 
 def hvi_debris_cloud(args):
     """The paper's headline debris cloud (Al sphere D = 9.53 mm, 6.7 km/s, t/D = 0.425, 32 µs,
-    1e5 particles, about 13 min on two cores): R = L_a/L_r of the bulk (95 % of the cloud's
+    1e5 particles, 18 min on two cores): R = L_a/L_r of the bulk (95 % of the cloud's
     mass) against the experiment's 1.55 within 15 % (the outline is read off one photograph by
     eye, each length uncertain by some 5-7 %, and the paper's own best fit lies at 1.47-1.54);
     v_a/v0 below 1 (the paper's simulated front is slower than the projectile) and equal to the
