@@ -37,7 +37,10 @@ def write_lammps_deck(simple, source, directory, time=None, **properties):
 def run_lammps(directory, ranks=2, timeout=None):
     """Runs the deck in DIRECTORY with scripts/run-lammps on RANKS MPI ranks; returns the dump's
     path. Raises RuntimeError with the script's message when LAMMPS is missing or fails."""
-    env = dict(os.environ, OMP_NUM_THREADS="1")
+    # pvbatch runs as an MPI singleton: its Open MPI / PMIx variables would make the child
+    # mpirun try to join it and fail before LAMMPS starts, so the child gets none of them.
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "OPAL_"))}
+    env["OMP_NUM_THREADS"] = "1"
     if timeout:
         env["CRATERKIT_LAMMPS_TIMEOUT"] = str(int(timeout))
     done = subprocess.run([RUN_LAMMPS, directory, str(ranks)], env=env, capture_output=True, text=True)
