@@ -11,12 +11,21 @@
  * would give (from the input's Time to EndTime every OutputInterval). FileName is the deck's
  * directory (created): data.craterkit, in.craterkit; scripts/run-lammps runs it and the
  * LAMMPS dump reader reads its dump.craterkit. All deck logic lives in Solvers/dem/LammpsDeck.
+ *
+ * A BondedImpact state (field data Kappa) at its first time step gives the bonded model's deck
+ * instead (Solvers/bonded/BondedLammpsDeck: lj/cut WCA repulsion, the pull-only bond as a table
+ * or bond_style harmonic with HarmonicBonds, fix bond/break), with the law and step of its field
+ * data and the output times as above; the DEM properties do not apply to it.
  */
 #ifndef vtkCraterKitLAMMPSDeckWriter_h
 #define vtkCraterKitLAMMPSDeckWriter_h
 
 #include "CraterKitReadersModule.h"
 #include <vtkWriter.h>
+
+#include <vector>
+
+class vtkPointSet;
 
 class CRATERKITREADERS_EXPORT vtkCraterKitLAMMPSDeckWriter : public vtkWriter {
 public:
@@ -87,6 +96,10 @@ public:
   vtkGetMacro(ImpactSpeed, double);
   vtkSetMacro(ImpactAngle, double);
   vtkGetMacro(ImpactAngle, double);
+  // Bonded decks: 1 = bond_style harmonic (also pushes compressed bonds), 0 = Eq. 4's pull-only
+  // bond as a table (bonded/BondedLammpsDeck.h).
+  vtkSetClampMacro(HarmonicBonds, int, 0, 1);
+  vtkGetMacro(HarmonicBonds, int);
 
 protected:
   vtkCraterKitLAMMPSDeckWriter();
@@ -125,8 +138,10 @@ protected:
   double ImpactorDensity = 8900.0;
   double ImpactSpeed = 2.0;
   double ImpactAngle = 0.0;
+  int HarmonicBonds = 0;
 
 private:
+  void WriteBonded(vtkPointSet* input, double start, const std::vector<double>& times);
   vtkCraterKitLAMMPSDeckWriter(const vtkCraterKitLAMMPSDeckWriter&) = delete;
   void operator=(const vtkCraterKitLAMMPSDeckWriter&) = delete;
 };

@@ -6,7 +6,9 @@ the mass LAMMPS computes from diameter and density is the original to rounding. 
 run DEMIntegrator would do with the same properties: its time step is DEMIntegrator's TimeStep
 field, its dumps fall at DEMIntegrator's output times after the state's, its bowl becomes a
 wall/gran/region. SaveData picks the writer by the .lammps extension; the Python helper writes
-the same deck; cohesion and an EndTime before the state are refused with errors naming them."""
+the same deck; cohesion and an EndTime before the state are refused with errors naming them. A
+BondedImpact state at step 0 gives the bonded deck with every set-up bond, its step and its
+positions bit for bit; a later bonded state is refused."""
 
 import math
 import os
@@ -119,6 +121,31 @@ saved = os.path.join(folder, "saved.lammps")
 simple.SaveData(saved, proxy=bed, EndTime=0.5, OutputInterval=0.25)
 t.check(os.path.isfile(os.path.join(saved, "in.craterkit")) and deck_text(saved) == deck_text(deck1),
         "SaveData(.lammps) did not write the same deck")
+
+# A BondedImpact state at its first time step: the bonded model's deck, with every set-up bond.
+bonded = simple.BondedImpact(ParticleCount=800, EndTime=1e-6, OutputInterval=5e-7)
+bonded.UpdatePipeline(0.0)
+state0 = fetch(simple.ForceTime(Input=bonded, ForcedTime=0.0, IgnorePipelineTime=1))
+deck3 = os.path.join(folder, "bonded.lammps")
+write_lammps_deck(simple, bonded, deck3, time=0.0, EndTime=1e-6, OutputInterval=5e-7)
+text = deck_text(deck3)
+data = open(os.path.join(deck3, "data.craterkit")).read()
+bonds = int(re.search(r"^(\d+) bonds$", data, re.M).group(1))
+t.check(bonds == int(field_value(state0, "Bonds")), f"{bonds} bonds written, BondedImpact formed {field_value(state0, 'Bonds')}")
+t.check("bond_style table linear" in text and "fix break all bond/break 1 1" in text,
+        "the bonded deck lacks its bond table or fix bond/break")
+t.check(float(re.search(r"^timestep (\S+)", text, re.M).group(1)) == field_value(state0, "TimeStep"),
+        "the bonded deck's step is not BondedImpact's")
+x = vtk_to_numpy(state0.GetPoints().GetData())
+rows = re.search(r"Atoms # bond\n\n(.*?)\n\n", data, re.S).group(1).splitlines()
+xb = np.array([[float(w) for w in row.split()[3:6]] for row in rows])
+t.check(xb.shape == x.shape and np.array_equal(xb, x), "bonded positions differ from BondedImpact's (bit for bit)")
+# A later state has lost bonds the arrays do not name: refused.
+bonded.UpdatePipeline(5e-7)
+with captured_vtk_messages() as messages:
+    simple.LAMMPSDeckWriter(Input=bonded, FileName=os.path.join(folder, "late"), EndTime=1e-6,
+                            OutputInterval=5e-7).UpdatePipeline(5e-7)
+t.check("first time step" in messages["text"], f"a late bonded state was not refused: {messages['text'][:200]}")
 
 # Refused: cohesion (no pair_style granular counterpart) and no output time after the state.
 for bad, word in (({"Cohesion": 10.0}, "cohesion"), ({"EndTime": 0.0}, "EndTime")):
