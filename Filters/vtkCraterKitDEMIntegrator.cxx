@@ -1,6 +1,6 @@
 #include "vtkCraterKitDEMIntegrator.h"
 
-#include "CraterKitEnumTables.h"
+#include "CraterKitDemSetup.h"
 #include "vtkCraterKitSolverBridge.h"
 
 #include "dem/DemRun.h"
@@ -38,50 +38,7 @@ int vtkCraterKitDEMIntegrator::RequestInformation(vtkInformation*,
 void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input) {
   using namespace craterkit;
   vtkFieldData* fd = input->GetFieldData();
-  DemSetup setup;
-  ContactParams& c = setup.contact;
-  c.normalModel = std::string(enums::kContactLaw.toSolver(this->ContactLaw));
-  c.kT = this->TangentialStiffness;
-  c.restitutionN = this->NormalRestitution;
-  c.restitutionT = this->TangentialRestitution;
-  c.muS = this->StaticFriction;
-  c.muR = this->RollingFriction;
-  c.muT = this->TwistingFriction;
-  c.beta = this->ShapeParameter;
-  c.cohesion = this->Cohesion;
-  c.youngsModulus = this->YoungsModulus;
-  c.poissonRatio = this->PoissonRatio;
-  setup.normalStiffness = this->NormalStiffness;
-  setup.timeStep = this->TimeStep;
-  setup.stepsPerCollision = this->StepsPerCollision;
-  setup.maxExpectedSpeed = this->MaxExpectedSpeed;
-  setup.maxOverlap = this->MaxOverlap;
-  Gravity& g = setup.gravity;
-  g.type = enums::kGravityModel.toSolver(this->GravityModel);
-  std::copy(this->SurfaceGravity, this->SurfaceGravity + 3, g.vector.begin());
-  g.GM = this->PointMassGM;
-  std::copy(this->PointMassCentre, this->PointMassCentre + 3, g.centre.begin());
-  setup.addImpactor = this->AddImpactor != 0;
-  setup.impactor = ImpactorParams{this->ImpactorRadius, this->ImpactorDensity, this->ImpactSpeed,
-                                  this->ImpactAngle};
-  setup.surfaceHeight = bridge::fieldScalar(fd, "SurfaceHeight", std::nan(""));
-
-  craterkit::Container& box = setup.container;
-  box.bowlRadius = this->ContainerRadius;
-  box.boxSize = {this->BoxSize[0], this->BoxSize[1], this->BoxSize[2]};
-  const enums::DemContainer walls = enums::kDemContainer.toSolver(this->Container);
-  std::string type = walls == enums::DemContainer::Box    ? "Box"
-                     : walls == enums::DemContainer::Bowl ? "Bowl"
-                                                          : "";
-  if (walls == enums::DemContainer::FromInput) {
-    type = bridge::fieldString(fd, "ContainerType");
-    box.bowlRadius = bridge::fieldScalar(fd, "ContainerRadius", this->ContainerRadius);
-    vtkDataArray* size = fd->GetArray("BoxSize");
-    for (int k = 0; k < 3 && size && size->GetNumberOfComponents() == 3; ++k)
-      box.boxSize[k] = size->GetComponent(0, k);
-  }
-  chooseWalls(setup, type, walls == enums::DemContainer::Cylinder);
-
+  const DemSetup setup = bridge::demSetupOf(this, fd);
   const DemProblem problem = setUpDem(bridge::fromPolyData(input), setup);
   this->Run = std::make_unique<DemRun>(problem.particles, problem.params,
                                        bridge::fieldScalar(fd, "Time", 0.0),

@@ -31,13 +31,19 @@ In the gravity regime crater shape and D / D_pi would be the same at any gravity
 validation (benchmarks/sci_crater/run.py) reads the SCI crater off the scaled result; these runs
 do depend on g (recorded D / D_pi 0.78 at g = 1000, 0.95 at g = 100: docs/validation.md).
 
+--dem-engine lammps hands the DEM stage to LAMMPS (same bed, same hand-off, the deck written by
+LAMMPSDeckWriter with the properties DEMIntegrator gets here, run by scripts/run-lammps with MPI,
+the dump read back by the LAMMPS dump reader and measured by CraterProfile; docs/lammps.md).
+
     scripts/pvbatch examples/sci_crater.py --help
+    scripts/pvbatch examples/sci_crater.py --dem-engine lammps --lammps-ranks 2
 """
 
 import argparse
 import json
 import math
 import os
+import re
 import sys
 import time
 
@@ -111,6 +117,11 @@ def parse_args(argv):
     g.add_argument("--frames", type=int, default=6, help="DEM outputs (progress and the crater's growth)")
     g.add_argument("--max-overlap", type=float, default=0.01, help="allowed overlap, fraction of a radius")
     g.add_argument("--checkpoint", default="", help="DEM checkpoint file; default OUTPUT_DIR/dem.ckdem (the SPH stage's is OUTPUT_DIR/sph.cksph)")
+    g.add_argument("--dem-engine", choices=["craterkit", "lammps"], default="craterkit",
+                   help="lammps: the DEM stage as a LAMMPS deck written from the hand-off by LAMMPSDeckWriter "
+                        "(OUTPUT_DIR/lammps), run by scripts/run-lammps with MPI and read back from its dump "
+                        "(docs/lammps.md); the DEM checkpoint and --resume of the DEM stage do not apply")
+    g.add_argument("--lammps-ranks", type=int, default=2, help="MPI ranks of the LAMMPS run")
     g.add_argument("--resume", action="store_true", help="continue from the checkpoints: the SPH stage (or its saved hand-off state) and the DEM stage")
     p.add_argument("--output-dir", default="results/sci_crater")
     p.add_argument("--width", type=int, default=900, help="width of each picture panel in pixels")
@@ -130,6 +141,8 @@ def parse_args(argv):
         p.error(f"--particles must be at least 200 (got {args.particles})")
     if args.frames < 1:
         p.error("--frames must be at least 1")
+    if args.lammps_ranks < 1:
+        p.error("--lammps-ranks must be at least 1")
     return args
 
 
@@ -171,6 +184,33 @@ def saved_sph_state(simple, args):
         sys.exit(f"--sph-state {args.sph_state}: it is at t = {time_saved:g} s, this run hands off at "
                  f"--handoff-time {args.handoff_time:g} s")
     return sph, data, time_saved
+
+
+def lammps_stage(simple, args, hand, t0, props):
+    """The DEM stage on LAMMPS: the hand-off written as a deck with DEMIntegrator's properties
+    PROPS (so the same walls, gravity, stiffness and step), run with MPI, and its dump read back
+    on the pipeline's clock (the deck counts time from the hand-off, t0). Returns the source of
+    the DEM states, their times and the deck's step."""
+    from craterkit.lammps import lammps_available, read_lammps_dump, run_lammps, write_lammps_deck
+    if not lammps_available():
+        sys.exit("--dem-engine lammps: LAMMPS (lmp) or mpirun is not installed (Debian: apt-get install lammps)")
+    deck = os.path.join(args.output_dir, "lammps")
+    write_lammps_deck(simple, hand, deck, **props)
+    dt = float(re.search(r"^timestep (\S+)", open(os.path.join(deck, "in.craterkit")).read(), re.M).group(1))
+    say(f"      LAMMPS deck {deck}/in.craterkit, time step {dt:.3g} s; running on {args.lammps_ranks} MPI ranks")
+    try:
+        dump = run_lammps(deck, args.lammps_ranks)
+    except RuntimeError as error:
+        sys.exit(f"--dem-engine lammps: {error}")
+    reader, times = read_lammps_dump(simple, dump)
+    return simple.TemporalShiftScale(Input=reader, PostShift=t0), [t0 + tau for tau in times], dt
+
+
+def steps_of(data):
+    """The step count of a DEM state: DEMIntegrator's Step field, or the LAMMPS dump's step
+    (the reader's TimeStep field; DEMIntegrator's TimeStep is its step length)."""
+    step = field_value(data, "Step")
+    return int(step if step is not None else field_value(data, "TimeStep"))
 
 
 def speeds(data):
@@ -330,19 +370,23 @@ def main(argv):
         f"(stiffness for {max_speed:.3g} m/s and the smallest grain, r = {r_min:.3g} m; the bed's {grain_radius:.3g} m)")
     checkpoint = args.checkpoint or os.path.join(args.output_dir, "dem.ckdem")
     frames = [t0 + dem_time * (k + 1) / args.frames for k in range(args.frames)]
-    dem = simple.DEMIntegrator(Input=hand, Container="FromInput", GravityModel="Uniform",
-                               SurfaceGravity=[0.0, 0.0, -args.gravity], MaxExpectedSpeed=max_speed,
-                               MaxOverlap=args.max_overlap, EndTime=frames[-1],
-                               OutputInterval=dem_time / args.frames, KeptStates=0,
-                               CheckpointFile=checkpoint, CheckpointInterval=20000,
-                               ResumeFromCheckpoint=1 if args.resume else 0)
-    profile = simple.CraterProfile(Input=dem, SurfaceFromInput=0, SurfaceHeight=surface)
+    dem_props = dict(Container="FromInput", GravityModel="Uniform", SurfaceGravity=[0.0, 0.0, -args.gravity],
+                     MaxExpectedSpeed=max_speed, MaxOverlap=args.max_overlap, EndTime=frames[-1],
+                     OutputInterval=dem_time / args.frames)
     start = time.time()
+    lammps_dt = None
+    if args.dem_engine == "lammps":
+        # The same set-up as DEMIntegrator's below; the frames are the dump's own times.
+        dem, frames, lammps_dt = lammps_stage(simple, args, hand, t0, dem_props)
+    else:
+        dem = simple.DEMIntegrator(Input=hand, KeptStates=0, CheckpointFile=checkpoint, CheckpointInterval=20000,
+                                   ResumeFromCheckpoint=1 if args.resume else 0, **dem_props)
+    profile = simple.CraterProfile(Input=dem, SurfaceFromInput=0, SurfaceHeight=surface)
     # Each frame's measures are saved as it completes, and each requested frame leaves its
     # state in the checkpoint: --resume goes on from the first frame not yet done.
     growth_file = os.path.join(args.output_dir, "dem_growth.json")
     growth = []
-    if args.resume and os.path.exists(growth_file) and os.path.exists(checkpoint):
+    if args.resume and args.dem_engine == "craterkit" and os.path.exists(growth_file) and os.path.exists(checkpoint):
         growth = [g for g in json.load(open(growth_file)) if g["time_s"] <= frames[-1]]
         if growth:
             say(f"      resuming after t = {growth[-1]['time_s']:.4g} s ({len(growth)} frames done)")
@@ -352,8 +396,9 @@ def main(argv):
             continue
         data = fetch_stage(dem, "DEM stage", t)
         if not step_told:
-            # The integrator's own choice (chooseStiffnessAndStep), read from its output.
-            dt = field_value(data, "TimeStep")
+            # The integrator's own choice (chooseStiffnessAndStep), read from its output (the
+            # deck holds the same choice).
+            dt = lammps_dt or field_value(data, "TimeStep")
             say(f"      time step {dt:.3g} s: about {dem_time / dt:.3g} steps in all")
             step_told = True
         m = crater_measures(profile, t)
@@ -361,7 +406,7 @@ def main(argv):
         growth.append({"time_s": t, "diameter_m": m["diameter"] if m["found"] else 0.0, "depth_m": m["depth"],
                        "bed_kinetic_energy_J": now["bed_kinetic_energy_J"],
                        "ejecta_in_flight": now["ejecta_in_flight"]})
-        say(f"      t = {t:.4g} s, {int(field_value(data, 'Step'))} steps, {time.time() - start:.0f} s: "
+        say(f"      t = {t:.4g} s, {steps_of(data)} steps, {time.time() - start:.0f} s: "
             f"crater diameter {growth[-1]['diameter_m']:.3g} m, depth {m['depth']:.3g} m; bed kinetic energy "
             f"{now['bed_kinetic_energy_J']:.3g} J, {now['ejecta_in_flight']} ejecta in flight")
         with open(growth_file + ".part", "w") as f:  # replaced whole: a killed run leaves the last one
@@ -442,8 +487,9 @@ def main(argv):
                               "rim_diameter_m": at_handoff["rim_diameter"] if at_handoff["found"] else None},
         "dem_totals_after_handoff": dem0_tot,
         "dem_max_expected_speed_m_s": round(max_speed, 3),
-        "dem_end_time_s": field_value(dem_data, "Time"),
-        "dem_steps": int(field_value(dem_data, "Step")),
+        "dem_engine": args.dem_engine,
+        "dem_end_time_s": field_value(dem_data, "Time") + (t0 if args.dem_engine == "lammps" else 0.0),
+        "dem_steps": steps_of(dem_data),
         "dem_totals_at_end": dem_tot,
         "crater_growth": growth,
         "seconds": seconds,
@@ -456,7 +502,9 @@ def main(argv):
                 f", not Ryugu's {RYUGU_GRAVITY:g} m/s^2: the crater is {d_pi:.3g} m by pi-scaling instead of "
                 f"{d_sci:.3g} m, so that the run fits minutes") +
              f". SPH stage: {sph_data.GetNumberOfPoints():,} particles; DEM bed: "
-             f"{bed_data.GetNumberOfPoints():,} {args.packing} grains of radius {grain_radius:.3g} m. "
+             f"{bed_data.GetNumberOfPoints():,} {args.packing} grains of radius {grain_radius:.3g} m"
+             + (f", its DEM stage run by LAMMPS on {args.lammps_ranks} MPI ranks from the deck in lammps/. "
+                if args.dem_engine == "lammps" else ". ")
              + (f"The crater is {measures['diameter']:.3g} m wide ({across:.0f} grain diameters) and "
                 f"{measures['depth']:.3g} m deep ({measures['depth'] / (2.0 * grain_radius):.1f} grain diameters), "
                 f"{measures['diameter'] / d_pi:.2f} of the pi-scaling diameter {d_pi:.3g} m; its depth is "

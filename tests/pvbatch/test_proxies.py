@@ -50,11 +50,14 @@ bed_for_inputs = None
 for path in xml_files:
     for group in ET.parse(path).getroot().findall("ProxyGroup"):
         # Readers wrapped in ParaView's file-series reader, their internal core proxies and
-        # the writers need a file to exist: test_particle_files.py covers them.
-        if group.get("name") not in ("sources", "filters"):
+        # the file writers need a file to exist: test_particle_files.py covers them. The deck
+        # writer carries DEMIntegrator's properties, whose defaults are checked here too.
+        if group.get("name") not in ("sources", "filters", "writers"):
             continue
         for element in group:
             if element.get("class") == "vtkFileSeriesReader":
+                continue
+            if group.get("name") == "writers" and element.get("name") != "LAMMPSDeckWriter":
                 continue
             name = element.get("name")
             label = element.get("label") or name

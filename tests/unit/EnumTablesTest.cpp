@@ -1,5 +1,5 @@
 // The proxies' enumerations (every <EnumerationDomain> of Plugin/xml/*.xml) against the named
-// tables the filters map them through (Filters/CraterKitEnumTables.h): every XML entry has its
+// tables the filters map them through (Bridge/CraterKitEnumTables.h): every XML entry has its
 // row, value -> solver -> value round-trips, the texts agree, and no table has a row the XML
 // lacks.
 #include "CraterKitEnumTables.h"

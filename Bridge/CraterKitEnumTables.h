@@ -138,6 +138,15 @@ inline const Table<ProjectileShape, 2> kProjectileShape{
     "ProjectileShape",
     {{{0, "Sphere", ProjectileShape::Sphere}, {1, "Cylinder", ProjectileShape::Cylinder}}}};
 
+// LAMMPSDeckWriter: DEMIntegrator's DEM choices under the writer's name (the same rows, so that
+// a deck is set up as the integrator would run).
+inline const Table<std::string_view, 2> kDeckContactLaw{"LAMMPSDeckWriter", "ContactLaw",
+                                                        kContactLaw.rows};
+inline const Table<DemContainer, 5> kDeckContainer{"LAMMPSDeckWriter", "Container",
+                                                   kDemContainer.rows};
+inline const Table<Gravity::Type, 3> kDeckGravityModel{"LAMMPSDeckWriter", "GravityModel",
+                                                       kGravityModel.rows};
+
 // Every table above, for the checks that go through all of them.
 template <class F> void forEachTable(F&& f) {
   f(kContactLaw);
@@ -152,6 +161,9 @@ template <class F> void forEachTable(F&& f) {
   f(kTargetShape);
   f(kKernel);
   f(kProjectileShape);
+  f(kDeckContactLaw);
+  f(kDeckContainer);
+  f(kDeckGravityModel);
 }
 
 } // namespace craterkit::enums
