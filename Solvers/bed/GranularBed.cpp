@@ -6,6 +6,7 @@
 #include "dem/DemSolver.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -25,6 +26,14 @@ constexpr double kGrowthSweeps = 300.0;
 constexpr double kGrowthOverlap = 0.02;
 constexpr double kRelaxSpacing = 1e-3;
 constexpr double kWallDepletion = 0.5; // in mean radii
+
+// Appends the seconds since `start` to the report's stage times under `name`, restarts it.
+void endStage(GranularBedReport& report, const char* name,
+              std::chrono::steady_clock::time_point& start) {
+  const auto now = std::chrono::steady_clock::now();
+  report.stageSeconds.emplace_back(name, std::chrono::duration<double>(now - start).count());
+  start = now;
+}
 
 double sphereVolume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
 
@@ -234,8 +243,9 @@ ParticleSet trimToSurface(const ParticleSet& s, double surface) {
   return out;
 }
 
-ParticleSet randomBed(const GranularBedParams& p, GranularBedReport* report,
+ParticleSet randomBed(const GranularBedParams& p, GranularBedReport& rep,
                       const ProgressCallback& progress) {
+  auto clock = std::chrono::steady_clock::now();
   // A settled bed compacts from the loose fraction to ~0.62: fill higher so that it still
   // reaches the surface afterwards (the bowl's wall continues as a cylinder above its rim).
   Container c = p.container;
@@ -267,22 +277,24 @@ ParticleSet randomBed(const GranularBedParams& p, GranularBedReport* report,
     } while (!c.inside(x, r));
     out.add(x, r, p.particleDensity, p.material, next++);
   }
+  endStage(rep, "placement", clock);
   const double placeShare = p.settle ? 0.2 : 1.0;
-  const int sweeps =
+  rep.relaxationIterations =
       relaxOverlaps(out, p, c, p.sizes.largest(), true, subRange(progress, 0.0, placeShare));
-  if (report)
-    report->relaxationIterations = sweeps;
+  endStage(rep, "relaxation", clock);
   if (!p.settle)
     return out;
-  GranularBedReport local;
-  GranularBedReport& rep = report ? *report : local;
   ParticleSet settled = settleBed(out, p, c, rep, subRange(progress, 0.2, 0.95));
+  endStage(rep, "settling", clock);
   ParticleSet trimmed = trimToSurface(settled, p.container.surfaceHeight);
   if (static_cast<std::int64_t>(trimmed.size()) > p.maxParticles)
     checkCap(static_cast<double>(trimmed.size()), p.maxParticles);
+  endStage(rep, "trim", clock);
   // Settling leaves contacts overlapping by up to ~1 % of a radius; remove those so the
   // bed is stress-free under any gravity and stiffness it is used with later.
-  relaxOverlaps(trimmed, p, p.container, p.sizes.largest(), false, subRange(progress, 0.95, 1.0));
+  rep.finalRelaxationIterations = relaxOverlaps(trimmed, p, p.container, p.sizes.largest(), false,
+                                                subRange(progress, 0.95, 1.0));
+  endStage(rep, "final relaxation", clock);
   return trimmed;
 }
 
@@ -332,7 +344,7 @@ ParticleSet generateGranularBed(const GranularBedParams& params, GranularBedRepo
   rep = GranularBedReport{};
   ParticleSet bed = params.packing == GranularBedParams::Packing::HCP
                         ? hcpBed(params, progress)
-                        : randomBed(params, &rep, progress);
+                        : randomBed(params, rep, progress);
   if (bed.size() == 0)
     throw InputError("the container holds no particle of the requested size");
   rep.particles = bed.size();

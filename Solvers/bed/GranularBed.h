@@ -22,6 +22,8 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace craterkit {
 
@@ -53,6 +55,10 @@ struct GranularBedReport {
   bool settled = false;             // RCP with settle: kinetic energy decayed in time
   double settlingTime = 0.0;        // s of simulated settling
   long long settlingSteps = 0;
+  int finalRelaxationIterations = 0; // RCP with settle: sweeps that removed the last overlaps
+  // Wall-clock seconds of each stage in the order run (RCP: "placement", "relaxation", then
+  // with settle "settling", "trim", "final relaxation"); for benchmarks.
+  std::vector<std::pair<std::string, double>> stageSeconds;
 };
 
 // Builds the bed. Throws InputError on bad parameters, Aborted if progress says stop.
