@@ -31,8 +31,8 @@ constexpr double kLooseOverlap = 0.1;
 constexpr double kLooseGrowthSweeps = 30.0;
 // The soft settling law: k_N from the lithostatic load of the fill at this overlap fraction
 // (proposeStiffness), kSettleStepsPerContact steps per contact (the solver's floor is 10),
-// restitution kSettleRestitution (strong damping; lower values shorten the contacts' clipped
-// duration below the step's reach). Overlaps of a few per cent are expected while settling.
+// restitution kSettleRestitution (strong damping; a trial at 0.1 with this step did not come to
+// rest within the time limit). Overlaps of a few per cent are expected while settling.
 constexpr double kSettleOverlap = 0.006;
 constexpr double kSettleStepsPerContact = 12.0;
 constexpr double kSettleRestitution = 0.3;
