@@ -6,6 +6,7 @@
 #include "dem/DemSolver.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -24,7 +25,32 @@ constexpr double kStartFraction = 0.30;
 constexpr double kGrowthSweeps = 300.0;
 constexpr double kGrowthOverlap = 0.02;
 constexpr double kRelaxSpacing = 1e-3;
+// Settling (docs/physics.md §7). The loose fill may keep overlaps up to kLooseOverlap (relative
+// to the smaller radius) and grows over kLooseGrowthSweeps: the soft DEM law pushes them apart.
+constexpr double kLooseOverlap = 0.1;
+constexpr double kLooseGrowthSweeps = 30.0;
+// The soft settling law: k_N from the lithostatic load of the fill at this overlap fraction
+// (proposeStiffness), kSettleStepsPerContact steps per contact (the solver's floor is 10),
+// restitution kSettleRestitution (strong damping; a trial at 0.1 with this step did not come to
+// rest within the time limit). Overlaps of a few per cent are expected while settling.
+constexpr double kSettleOverlap = 0.006;
+constexpr double kSettleStepsPerContact = 12.0;
+constexpr double kSettleRestitution = 0.3;
+constexpr double kSettleOverlapWarning = 0.3;
+// Settling runs at least this fraction of the fill's free-fall time.
+constexpr double kMinFall = 0.5;
+// Unloading: gravity lowered to this fraction over this many steps per grain layer.
+constexpr double kUnloadGravity = 1.0 / 64.0;
+constexpr double kUnloadStepsPerLayer = 25.0;
 constexpr double kWallDepletion = 0.5; // in mean radii
+
+// Appends the seconds since `start` to the report's stage times under `name`, restarts it.
+void endStage(GranularBedReport& report, const char* name,
+              std::chrono::steady_clock::time_point& start) {
+  const auto now = std::chrono::steady_clock::now();
+  report.stageSeconds.emplace_back(name, std::chrono::duration<double>(now - start).count());
+  start = now;
+}
 
 double sphereVolume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
 
@@ -82,11 +108,13 @@ ParticleSet hcpBed(const GranularBedParams& p, const ProgressCallback& progress)
 }
 
 // Removes all overlaps by Jacobi relaxation while the radii grow from a fraction of their
-// final size (force-biased inflation): overlaps stay small at every sweep, so the
-// relaxation converges in a few hundred sweeps instead of untangling a dense random
-// start. Returns the number of sweeps.
+// final size (force-biased inflation) over about `growthSweeps`: overlaps stay small at every
+// sweep, so the relaxation converges in a few hundred sweeps instead of untangling a dense
+// random start. Stops once the radii are full and no pair overlaps by more than `tolerance`
+// (relative to the smaller radius). Returns the number of sweeps.
 int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, const Container& container,
-                  double rmax, bool inflate, const ProgressCallback& progress) {
+                  double rmax, bool inflate, const ProgressCallback& progress,
+                  double tolerance = 0.0, double growthSweeps = kGrowthSweeps) {
   const std::size_t n = s.size();
   const double* radius = s.radius.data();
   std::vector<double> shift(3 * n);
@@ -95,12 +123,12 @@ int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, const Container& c
   // overlapping by round-off once the sweep finds none.
   const double spacing = 1.0 + kRelaxSpacing;
   double scale = inflate ? std::min(1.0, std::cbrt(kStartFraction / p.packingFraction)) : 1.0;
-  const double growth = std::max(1e-4, -std::log(scale) / kGrowthSweeps);
+  const double growth = std::max(1e-4, -std::log(scale) / growthSweeps);
   for (int sweep = 0; sweep < p.maxRelaxationIterations; ++sweep) {
     if (sweep % 16 == 0) {
       // 0.8 over the growth's sweeps, then on towards 1 while the last overlaps go (that can
       // take as long again: the bar must keep moving, not sit at its end).
-      const double g2 = 2.0 * kGrowthSweeps;
+      const double g2 = 2.0 * growthSweeps;
       reportProgress(progress, sweep < g2 ? 0.8 * sweep / g2 : 0.8 + 0.2 * (1.0 - g2 / sweep));
     }
     double* x = s.position.data();
@@ -134,7 +162,7 @@ int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, const Container& c
       for (int k = 0; k < 3; ++k)
         shift[3 * i + k] = d[k];
     }
-    if (worst <= 0.0 && scale == 1.0)
+    if (worst <= tolerance && scale == 1.0)
       return sweep;
 #pragma omp parallel for schedule(static) if (n >= 512)
     for (std::size_t i = 0; i < n; ++i) {
@@ -143,7 +171,7 @@ int relaxOverlaps(ParticleSet& s, const GranularBedParams& p, const Container& c
       container.project(&x[3 * i], scale * radius[i]);
     }
     // Grow only while the packing keeps up, so that jams are not forced.
-    if (worst < kGrowthOverlap)
+    if (worst < std::max(kGrowthOverlap, tolerance))
       scale = std::min(1.0, scale * (1.0 + growth));
   }
   std::ostringstream msg;
@@ -159,25 +187,75 @@ ProgressCallback subRange(const ProgressCallback& progress, double lo, double hi
   return [progress, lo, hi](double f) { return progress(lo + (hi - lo) * f); };
 }
 
-// Settles a loose bed under gravity with the SSDEM solver until its kinetic energy has
-// decayed (docs/physics.md §7): strong damping, low friction, no rolling resistance.
-ParticleSet settleBed(const ParticleSet& loose, const GranularBedParams& p, const Container& filled,
-                      GranularBedReport& report, const ProgressCallback& progress) {
+// Kinetic energy (translation and spin) of the particles whose centre lies below `keepBelow`,
+// and their number.
+double keptKineticEnergy(const ParticleSet& s, double keepBelow, std::size_t& kept) {
+  double energy = 0.0;
+  kept = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s.position[3 * i + 2] > keepBelow)
+      continue;
+    ++kept;
+    double v2 = 0.0, w2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      v2 += s.velocity[3 * i + k] * s.velocity[3 * i + k];
+      w2 += s.angularVelocity[3 * i + k] * s.angularVelocity[3 * i + k];
+    }
+    energy += 0.5 * s.mass[i] * (v2 + 0.4 * s.radius[i] * s.radius[i] * w2);
+  }
+  return energy;
+}
+
+// The settling run's DEM: strong damping, the bed's friction, no rolling resistance, and a
+// soft contact law (docs/physics.md §7). The stiffness carries the weight of the filled
+// height at the overlap kSettleOverlap of the lithostatic estimate, not an impact: the step
+// grows as 1/sqrt(k_N), and the overlaps it leaves are taken out by unloading (unloadBed).
+DemParams settlingParams(const GranularBedParams& p, const Container& filled) {
   const double g = p.settlingGravity;
   const double rmin = p.sizes.smallest();
-  const double height = filled.surfaceHeight - filled.floorHeight();
   DemParams dp;
   dp.walls = containerWalls(filled);
   dp.gravity = Gravity::downward(g);
-  dp.contact.restitutionN = dp.contact.restitutionT = 0.3;
+  dp.contact.restitutionN = dp.contact.restitutionT = kSettleRestitution;
   dp.contact.muS = p.settlingFriction;
   dp.contact.muR = dp.contact.muT = 0.0;
-  dp.initialOverlapLimit = 0.05;
-  const StiffnessChoice k = chooseStiffnessAndStep(
-      {rmin, p.particleDensity, std::sqrt(2.0 * g * rmin), 0.01, g, height, 25.0});
+  // The loose fill may overlap by kLooseOverlap; the soft law pushes that apart gently.
+  dp.initialOverlapLimit = 2.0 * kLooseOverlap;
+  dp.overlapWarning = kSettleOverlapWarning;
+  dp.warnStepsPerCollision = kSettleStepsPerContact;
+  const StiffnessChoice k =
+      chooseStiffnessAndStep({rmin, p.particleDensity, 0.0, kSettleOverlap, g,
+                              filled.surfaceHeight - filled.floorHeight(), kSettleStepsPerContact});
   dp.contact.kN = k.kN;
   dp.contact.kT = k.kT;
   dp.dt = k.dt;
+  return dp;
+}
+
+// Unloads a settled bed: gravity falls exponentially to kUnloadGravity of its value over
+// kUnloadStepsPerLayer steps per grain layer of the fill (a few crossings of the bed by a
+// contact wave), so the contacts relax quasi-statically to a 64th of their overlap under the
+// full weight, as a law 64 times stiffer would leave them, at the soft law's step.
+void unloadBed(DemSolver& solver, double g, double height, double meanRadius,
+               const ProgressCallback& progress) {
+  const long steps =
+      std::max(200L, std::lround(kUnloadStepsPerLayer * height / (2.0 * meanRadius)));
+  for (long i = 0; i < steps; ++i) {
+    if (i % 10 == 0) {
+      reportProgress(progress, static_cast<double>(i) / steps);
+      solver.setGravity(Gravity::downward(g * std::pow(kUnloadGravity, double(i) / steps)));
+    }
+    solver.step();
+  }
+}
+
+// Settles a loose bed under gravity with the SSDEM solver until its kinetic energy has
+// decayed, then unloads it (docs/physics.md §7).
+ParticleSet settleBed(const ParticleSet& loose, const GranularBedParams& p, const Container& filled,
+                      GranularBedReport& report, const ProgressCallback& progress) {
+  const double g = p.settlingGravity;
+  const double height = filled.surfaceHeight - filled.floorHeight();
+  const DemParams dp = settlingParams(p, filled);
   const double fall = std::sqrt(2.0 * height / g);
   DemSolver solver(loose, dp);
 
@@ -191,28 +269,20 @@ ParticleSet settleBed(const ParticleSet& loose, const GranularBedParams& p, cons
   }
   const double chunk = std::max(0.05 * fall, 100.0 * dp.dt);
   const double limit = 40.0 * fall;
+  // The loose fill compacts by falling a fraction of its height: half the free-fall time of
+  // the whole fill passes before its energy can have peaked and decayed.
   while (solver.time() < limit) {
     solver.advanceTo(solver.time() + chunk);
-    reportProgress(progress, std::min(0.99, solver.time() / (4.0 * fall)));
-    const ParticleSet& s = solver.particles();
-    double energy = 0.0;
+    reportProgress(progress, std::min(0.9, solver.time() / (2.0 * fall)));
     std::size_t kept = 0;
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      if (s.position[3 * i + 2] > keepBelow)
-        continue;
-      ++kept;
-      double v2 = 0.0, w2 = 0.0;
-      for (int k = 0; k < 3; ++k) {
-        v2 += s.velocity[3 * i + k] * s.velocity[3 * i + k];
-        w2 += s.angularVelocity[3 * i + k] * s.angularVelocity[3 * i + k];
-      }
-      energy += 0.5 * s.mass[i] * (v2 + 0.4 * s.radius[i] * s.radius[i] * w2);
-    }
-    if (solver.time() > fall && energy < p.settledEnergy * kept * meanMass * g * meanRadius) {
+    const double energy = keptKineticEnergy(solver.particles(), keepBelow, kept);
+    if (solver.time() > kMinFall * fall &&
+        energy < p.settledEnergy * kept * meanMass * g * meanRadius) {
       report.settled = true;
       break;
     }
   }
+  unloadBed(solver, g, height, meanRadius, subRange(progress, 0.9, 1.0));
   report.settlingTime = solver.time();
   report.settlingSteps = solver.stepCount();
   ParticleSet out = solver.particles();
@@ -234,8 +304,9 @@ ParticleSet trimToSurface(const ParticleSet& s, double surface) {
   return out;
 }
 
-ParticleSet randomBed(const GranularBedParams& p, GranularBedReport* report,
+ParticleSet randomBed(const GranularBedParams& p, GranularBedReport& rep,
                       const ProgressCallback& progress) {
+  auto clock = std::chrono::steady_clock::now();
   // A settled bed compacts from the loose fraction to ~0.62: fill higher so that it still
   // reaches the surface afterwards (the bowl's wall continues as a cylinder above its rim).
   Container c = p.container;
@@ -267,22 +338,26 @@ ParticleSet randomBed(const GranularBedParams& p, GranularBedReport* report,
     } while (!c.inside(x, r));
     out.add(x, r, p.particleDensity, p.material, next++);
   }
+  endStage(rep, "placement", clock);
   const double placeShare = p.settle ? 0.2 : 1.0;
-  const int sweeps =
-      relaxOverlaps(out, p, c, p.sizes.largest(), true, subRange(progress, 0.0, placeShare));
-  if (report)
-    report->relaxationIterations = sweeps;
+  // A fill that settles keeps small overlaps (the DEM removes them) and grows faster.
+  rep.relaxationIterations =
+      relaxOverlaps(out, p, c, p.sizes.largest(), true, subRange(progress, 0.0, placeShare),
+                    p.settle ? kLooseOverlap : 0.0, p.settle ? kLooseGrowthSweeps : kGrowthSweeps);
+  endStage(rep, "relaxation", clock);
   if (!p.settle)
     return out;
-  GranularBedReport local;
-  GranularBedReport& rep = report ? *report : local;
   ParticleSet settled = settleBed(out, p, c, rep, subRange(progress, 0.2, 0.95));
+  endStage(rep, "settling", clock);
   ParticleSet trimmed = trimToSurface(settled, p.container.surfaceHeight);
   if (static_cast<std::int64_t>(trimmed.size()) > p.maxParticles)
     checkCap(static_cast<double>(trimmed.size()), p.maxParticles);
-  // Settling leaves contacts overlapping by up to ~1 % of a radius; remove those so the
+  endStage(rep, "trim", clock);
+  // Unloading leaves contacts overlapping by well under 1 % of a radius; remove those so the
   // bed is stress-free under any gravity and stiffness it is used with later.
-  relaxOverlaps(trimmed, p, p.container, p.sizes.largest(), false, subRange(progress, 0.95, 1.0));
+  rep.finalRelaxationIterations = relaxOverlaps(trimmed, p, p.container, p.sizes.largest(), false,
+                                                subRange(progress, 0.95, 1.0));
+  endStage(rep, "final relaxation", clock);
   return trimmed;
 }
 
@@ -332,7 +407,7 @@ ParticleSet generateGranularBed(const GranularBedParams& params, GranularBedRepo
   rep = GranularBedReport{};
   ParticleSet bed = params.packing == GranularBedParams::Packing::HCP
                         ? hcpBed(params, progress)
-                        : randomBed(params, &rep, progress);
+                        : randomBed(params, rep, progress);
   if (bed.size() == 0)
     throw InputError("the container holds no particle of the requested size");
   rep.particles = bed.size();

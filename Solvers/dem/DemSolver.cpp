@@ -62,6 +62,11 @@ DemSolver::DemSolver(Restore, const ParticleSet& particles, const DemParams& par
   initialise(false);
 }
 
+void DemSolver::setGravity(const Gravity& gravity) {
+  gravity.validate();
+  params_.gravity = gravity;
+}
+
 void DemSolver::warn(const std::string& message) {
   if (warnings_.size() < 100)
     warnings_.push_back(message);

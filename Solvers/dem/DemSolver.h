@@ -74,6 +74,9 @@ public:
   long long advanceTo(double endTime, const ProgressCallback& progress = {},
                       const std::string& checkpointPath = {}, long long checkpointEvery = 0);
 
+  // Changes gravity from the next step on (the bed settling lowers it while it runs).
+  void setGravity(const Gravity& gravity);
+
   double time() const { return time_; }
   long long stepCount() const { return step_; }
   const ParticleSet& particles() const { return state_; }
