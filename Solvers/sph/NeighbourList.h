@@ -38,7 +38,6 @@ public:
   const std::vector<std::uint32_t>& entry() const { return entry_; } // index * 32 + image code
   std::vector<std::uint32_t> sortedOf(std::size_t a) const;          // a's entries, sorted
   double margin(std::size_t a) const { return margin_[a]; }
-  bool outside(std::size_t a) const { return out_[a] != 0; } // outside the domain: no neighbours
   std::size_t builds() const { return builds_; }
 
 private:

@@ -11,13 +11,11 @@
 // with the Courant and force time steps and error control (a step whose Euler predictor and
 // Heun corrector differ by more than a tolerance is taken again, shorter).
 //
-// Neighbours: Verlet lists from sparse cell lists, kept over steps (sph/NeighbourList.h); the
-// pair terms run over clusters of eight particles packed in structure-of-arrays blocks
-// (sph/ClusterList.h). OpenMP over particles; each particle sums only its own rates, so
-// results are the same bits for any thread count.
+// Neighbours: Verlet lists from sparse cell lists, kept over steps (sph/NeighbourList.h).
+// OpenMP over particles; each particle sums only its own rates, so results are the same bits
+// for any thread count.
 #pragma once
 
-#include "sph/ClusterList.h"
 #include "sph/GradyKippFracture.h"
 #include "sph/NeighbourList.h"
 #include "sph/SphParams.h"
@@ -81,8 +79,6 @@ private:
   template <class K, bool Xsph> double rates(const SphState& s, const std::vector<double>& p,
                                              const std::vector<double>& c, Rates& r) const;
   template <class K> void summation(SphState& s) const;
-  // The Verlet lists and the clusters from them (margins: see NeighbourList::build).
-  void buildLists(double dt, bool margins);
   double limitStep(const SphState& s, const Rates& r, double maxSignal) const;
   void imageShift(std::uint32_t code, double d[3]) const;
 
@@ -103,7 +99,6 @@ private:
   double time_ = 0.0, stableStep_ = 0.0;
   std::size_t steps_ = 0;
   bool late_ = false;
-  ClusterList clusters_; // the pair loop's clusters, from nb_
 };
 
 } // namespace craterkit
