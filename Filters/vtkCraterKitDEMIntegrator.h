@@ -113,8 +113,8 @@ protected:
   double NormalRestitution = 0.55;
   double TangentialRestitution = 0.55;
   double StaticFriction = 0.6;
-  double RollingFriction = 0.6;
-  double TwistingFriction = 0.75;
+  double RollingFriction = 0.35;
+  double TwistingFriction = 0.4375;
   double ShapeParameter = 0.5;
   double Cohesion = 0.0;
   double YoungsModulus = 1.0e8;

@@ -30,8 +30,8 @@ struct ContactParams {
   double muS = 0.6;           // static (sliding) friction
   // μ_r and μ_t are calibrated so that, with μ_s = 0.6 and β = 0.5, a heap's angle of repose
   // is 30° (the friction angle of the SCI study's regolith; benchmarks/README.md).
-  double muR = 0.6;             // rolling friction
-  double muT = 0.75;            // twisting friction
+  double muR = 0.35;            // rolling friction
+  double muT = 0.4375;          // twisting friction
   double beta = 0.5;            // shape parameter (contact size relative to the reduced radius)
   double cohesion = 0.0;        // Pa; attractive normal force c 4 (beta r)^2 per contact
   double youngsModulus = 1.0e8; // Pa (Hertz)
@@ -266,8 +266,11 @@ ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants&
       mR = kR * xiR;
       const double m2 = mR.squaredNorm();
       if (m2 > mRmax * mRmax) {
+        // Slipping: the spring stays at the limit (not at its last length, which would keep
+        // more than the limit when the load drops and drive the grain once the rolling turns
+        // back; docs/physics.md §1.4).
         mR *= mRmax / std::sqrt(m2);
-        xiR -= omegaR * dt;
+        xiR = mR / kR;
       } else {
         mR += cR * omegaR;
       }
@@ -279,7 +282,7 @@ ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants&
       const double trial = kQ * h.twisting;
       if (std::abs(trial) > mQmax) {
         mQ = std::copysign(mQmax, trial) * n;
-        h.twisting -= twistRate * dt;
+        h.twisting = std::copysign(mQmax, trial) / kQ;
       } else {
         mQ = (trial + cQ * twistRate) * n;
       }

@@ -56,11 +56,11 @@ def within(measured, reference, fraction):
 # --- the cases ------------------------------------------------------------------------------
 
 def angle_of_repose(args):
-    """Fixed-base heap of the default coefficients (μ_s 0.6, μ_r 0.6, μ_t 0.75) on a base of 30
+    """Fixed-base heap of the default coefficients (μ_s 0.6, μ_r 0.35, μ_t 0.4375) on a base of 30
     grain radii, where the cone and flank measures agree: both at 30° ± 4°, the SCI regolith's
     friction angle, the figure the defaults were calibrated to."""
     out = last_json(run([os.path.join(args.build, "benchmarks/angle_of_repose/ck_repose"),
-                         "0.6", "0.6", "0.75", "30"]))
+                         "0.6", "0.35", "0.4375", "30"]))
     return [Row("angle_of_repose", f"{name} angle, base 30 r", out[key], "30°", "± 4°",
                 abs(out[key] - 30.0) <= 4.0, "°")
             for name, key in (("flank", "flank_angle_deg"), ("cone", "cone_angle_deg"))]

@@ -260,3 +260,56 @@ TEST(ContactHertz, TangentialSpringFollowsMindlin) {
     EXPECT_NEAR(out.force[1], expected, 1e-9 * expected) << "overlap " << x;
   }
 }
+
+// The rolling and twisting sliders keep their springs at the limit while they slip (as
+// LAMMPS' sds models rescale them). Were a slipping spring held at its last elastic length
+// instead, a contact whose load then drops keeps far more twist than μ_r β R* F_N / k_R, and
+// when the rolling turns back the moment, capped at the new limit, keeps pushing the old way
+// until all of that has unwound: work done on the grain out of nothing (a bed that never comes
+// to rest). Here a contact rolls and twists one way under a load until both sliders slip, the
+// load is cut to a tenth and the motion reverses: the moments may go on the old way only while
+// the spring unwinds from the new limit, (limit / k) / (ω dt) steps, not from the old one.
+TEST(ContactFriction, RollingAndTwistingSpringsStayAtTheirLimitSoTheyNeverDrive) {
+  ContactParams p;
+  p.restitutionN = p.restitutionT = 1.0; // no dashpots: the moments are the springs alone
+  p.muS = 0.6;
+  p.muR = 0.6;
+  p.muT = 0.75;
+  p.kN = 1e6;
+  const LinearSpringDashpot law{p.kN, 0.0};
+  const FrictionConstants fc(p);
+  ContactState c;
+  c.n = Vec(0, 0, 1);
+  c.leverP = c.leverN = 0.05;
+  c.reducedRadius = 0.025;
+  c.reducedMass = 0.5;
+  c.u = Vec::Zero();
+  c.omegaSum = Vec::Zero();
+  ContactHistory h;
+  const double dt = 1e-6, w = 100.0;
+  ContactResult out{};
+  c.overlap = 1e-3;
+  c.omegaRel = Vec(w, 0, w);     // rolling about x, twisting about n
+  for (int k = 0; k < 2000; ++k) // 0.2 rad, several times what either spring holds
+    out = ssdemContact(law, p, fc, c, h, dt);
+  const double br = p.beta * c.reducedRadius;
+  double fN = p.kN * c.overlap;
+  ASSERT_NEAR(out.torqueP[0], p.muR * br * fN, 1e-9 * fN); // both slipping at the full load
+  ASSERT_NEAR(out.torqueP[2], p.muT * br * p.muS * fN, 1e-9 * fN);
+  c.overlap = 1e-4; // the load drops to a tenth
+  fN = p.kN * c.overlap;
+  c.omegaRel = Vec(-w, 0, -w); // and the rolling and twisting turn back
+  const double kR = p.kN * br * br, kQ = 2.0 * p.tangentialStiffness() * br * br;
+  const double rollSteps = p.muR * br * fN / kR / (w * dt);
+  const double twistSteps = p.muT * br * p.muS * fN / kQ / (w * dt);
+  int rollDriving = 0, twistDriving = 0;
+  for (int k = 0; k < 2000; ++k) {
+    out = ssdemContact(law, p, fc, c, h, dt);
+    // A moment on p along -ω_rel (= ω_p - ω_n) turns p further the way it turns: driving.
+    rollDriving += out.torqueP[0] * c.omegaRel[0] < 0.0;
+    twistDriving += out.torqueP[2] * c.omegaRel[2] < 0.0;
+  }
+  EXPECT_LE(rollDriving, rollSteps + 2.0);
+  EXPECT_LE(twistDriving, twistSteps + 2.0);
+  EXPECT_GT(rollDriving, 0.5 * rollSteps); // the spring does unwind (the test can see it)
+}

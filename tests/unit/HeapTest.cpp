@@ -22,11 +22,11 @@ TEST(HeapAngle, AngleGrowsWithSlidingAndRollingFriction) {
   ContactParams lowSliding;
   lowSliding.muS = 0.3;
   ContactParams lowRolling;
-  lowRolling.muR = 0.3;
-  lowRolling.muT = 0.375;
+  lowRolling.muR = 0.15;
+  lowRolling.muT = 0.1875;
   ContactParams littleRolling; // (none at all: the column flows off a base this small)
-  littleRolling.muR = 0.1;
-  littleRolling.muT = 0.1;
+  littleRolling.muR = 0.05;
+  littleRolling.muT = 0.05;
   const double sliding = runFixedBaseHeap(lowSliding, base).coneDegrees;
   const double rolling = runFixedBaseHeap(lowRolling, base).coneDegrees;
   const double little = runFixedBaseHeap(littleRolling, base).coneDegrees;
