@@ -3,6 +3,7 @@
 
 #include "common/AtomicWrite.h"
 #include "common/Error.h"
+#include "dem/LammpsDeck.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,11 +16,7 @@ namespace craterkit {
 
 namespace {
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v); // round-trips every double
-  return buf;
-}
+std::string num(double v) { return lammpsNumber(v); }
 
 // Table knots: spacing r_eq / 1200 from r_eq / 4 (far inside the repulsion, which keeps pairs
 // beyond ~0.7 σ even at 10 km/s) to 2 r_eq or 1.5 r_cut, with r_eq itself a knot.
@@ -41,19 +38,9 @@ void BondedDeckParams::validate() const {
     throw InputError("bonded LAMMPS deck: the time step must be > 0, got " + num(timeStep));
   if (!(skin > 0.0))
     throw InputError("bonded LAMMPS deck: the skin must be > 0, got " + num(skin));
-  if (outputTimes.empty())
-    throw InputError("bonded LAMMPS deck: no output times");
-  long long last = 0;
-  for (double t : outputTimes) {
-    const long long n = std::llround(t / timeStep);
-    if (!(t > 0.0) || !std::isfinite(t) || n <= last)
-      throw InputError("bonded LAMMPS deck: output time " + num(t) +
-                       " s is not after the previous one by at least one step");
-    last = n;
-  }
+  checkLammpsOutputTimes(outputTimes, timeStep, "bonded LAMMPS deck");
   for (const std::string& name : {dataFile, inputFile, dumpFile, tableFile})
-    if (name.empty() || name.find_first_of("/ \t\n'\"") != std::string::npos)
-      throw InputError("bonded LAMMPS deck: bad file name '" + name + "'");
+    checkLammpsFileName(name, "bonded LAMMPS deck");
 }
 
 std::string bondedBondTable(const ws2017::Law& law) {

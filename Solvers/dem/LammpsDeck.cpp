@@ -13,14 +13,34 @@
 
 namespace craterkit {
 
-namespace {
-
-// Full precision: %.17g round-trips every double.
-std::string num(double v) {
+std::string lammpsNumber(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
 }
+
+void checkLammpsOutputTimes(const std::vector<double>& times, double dt, const std::string& what) {
+  if (times.empty())
+    throw InputError(what + ": no output times");
+  long long last = 0;
+  for (double t : times) {
+    const long long n = std::llround(t / dt);
+    if (!(t > 0.0) || !std::isfinite(t) || n <= last)
+      throw InputError(what + ": output time " + lammpsNumber(t) +
+                       " s is not after the previous one by at least one step (dt " +
+                       lammpsNumber(dt) + " s)");
+    last = n;
+  }
+}
+
+void checkLammpsFileName(const std::string& name, const std::string& what) {
+  if (name.empty() || name.find_first_of("/ \t\n'\"") != std::string::npos)
+    throw InputError(what + ": bad file name '" + name + "'");
+}
+
+namespace {
+
+std::string num(double v) { return lammpsNumber(v); }
 
 // Reference values for the coefficients LAMMPS cannot vary per pair: the median grain.
 struct Median {
@@ -136,22 +156,11 @@ void LammpsDeckParams::validate() const {
   dem.validate();
   if (!(dem.dt > 0.0))
     throw InputError("LAMMPS deck: the time step must be > 0, got " + num(dem.dt));
-  if (outputTimes.empty())
-    throw InputError("LAMMPS deck: no output times");
   if (dem.gravity.type == Gravity::Type::PointMass)
     throw InputError("LAMMPS deck: point-mass gravity has no `fix gravity` counterpart");
-  long long last = 0;
-  for (double t : outputTimes) {
-    const long long n = std::llround(t / dem.dt);
-    if (!(t > 0.0) || !std::isfinite(t) || n <= last)
-      throw InputError("LAMMPS deck: output time " + num(t) +
-                       " s is not after the previous one by at least one step (dt " + num(dem.dt) +
-                       " s)");
-    last = n;
-  }
+  checkLammpsOutputTimes(outputTimes, dem.dt, "LAMMPS deck");
   for (const std::string& name : {dataFile, inputFile, dumpFile})
-    if (name.empty() || name.find_first_of("/ \t\n'\"") != std::string::npos)
-      throw InputError("LAMMPS deck: bad file name '" + name + "'");
+    checkLammpsFileName(name, "LAMMPS deck");
 }
 
 std::string lammpsDataFile(const ParticleSet& p, const LammpsDeckParams& params) {

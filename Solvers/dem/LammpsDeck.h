@@ -62,6 +62,14 @@ struct LammpsCoefficients {
   std::string pairCoeff() const; // the model words after `pair_coeff * *`
 };
 
+// The deck's text conventions, shared with the bonded decks (bonded/BondedLammpsDeck):
+// a number in full precision (%.17g, which round-trips every double); output times each at
+// least one step after the previous (InputError prefixed with WHAT); file names without
+// slashes, blanks or quotes.
+std::string lammpsNumber(double v);
+void checkLammpsOutputTimes(const std::vector<double>& times, double dt, const std::string& what);
+void checkLammpsFileName(const std::string& name, const std::string& what);
+
 // Tsuji et al. (1992)'s damping ratio as LAMMPS evaluates it for `damping tsuji`, and the
 // restitution e' in [0, 1] at which it equals ALPHA (InputError if none).
 double tsujiAlpha(double e);
