@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 #include <utility>
 
 namespace craterkit {
@@ -63,17 +64,23 @@ void labelFragments(std::size_t n, const std::vector<BondedBond>& bonds,
 }
 
 // Q_w(q): the smallest w_k such that the particles with w ≤ w_k hold at least q of the mass
-// (pairs of value and mass; sorted here). q = 0 gives the minimum, q = 1 the maximum.
-double massQuantile(std::vector<std::pair<double, double>>& valueMass, double q) {
+// (pairs of value and mass, sorted by value). q = 0 gives the minimum, q = 1 the maximum.
+double massQuantile(const std::vector<std::pair<double, double>>& sorted, double total, double q) {
+  double cumulative = 0.0;
+  for (const auto& vm : sorted)
+    if ((cumulative += vm.second) >= q * total)
+      return vm.first;
+  return sorted.back().first; // rounding: q * total above the running sum's last value
+}
+
+// Q_w(qLo) and Q_w(qHi), the pairs sorted once.
+std::pair<double, double> massQuantiles(std::vector<std::pair<double, double>>& valueMass,
+                                        double qLo, double qHi) {
   std::sort(valueMass.begin(), valueMass.end());
   double total = 0.0;
   for (const auto& vm : valueMass)
     total += vm.second;
-  double cumulative = 0.0;
-  for (const auto& vm : valueMass)
-    if ((cumulative += vm.second) >= q * total)
-      return vm.first;
-  return valueMass.back().first; // rounding: q * total above the running sum's last value
+  return {massQuantile(valueMass, total, qLo), massQuantile(valueMass, total, qHi)};
 }
 
 // Two unit vectors perpendicular to e and to each other: the two side views.
@@ -116,12 +123,12 @@ void measureCloud(const std::vector<double>& x, const std::vector<double>& v,
     speed.emplace_back(w, m[i]);
   }
   const double qHi = 0.5 * (1.0 + p.massFraction), qLo = 0.5 * (1.0 - p.massFraction);
-  out.leadingEdge = massQuantile(axial, qHi);
-  out.rearEdge = massQuantile(axial, qLo);
+  std::tie(out.rearEdge, out.leadingEdge) = massQuantiles(axial, qLo, qHi);
   out.axialLength = out.leadingEdge - out.rearEdge;
-  out.radialExtent = massQuantile(side, qHi) - massQuantile(side, qLo);
+  const auto [sideLo, sideHi] = massQuantiles(side, qLo, qHi);
+  out.radialExtent = sideHi - sideLo;
   out.ratio = out.radialExtent > 0.0 ? out.axialLength / out.radialExtent : 0.0;
-  out.axialVelocity = massQuantile(speed, qHi);
+  out.axialVelocity = massQuantiles(speed, qLo, qHi).second;
   out.axialVelocityRatio = p.impactSpeed > 0.0 ? out.axialVelocity / p.impactSpeed : 0.0;
 }
 
