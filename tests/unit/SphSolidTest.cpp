@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -188,9 +190,9 @@ struct Collapse {
   std::size_t steps = 0;
 };
 
-Collapse collapseColumn(double bulkModulus, double lateStageTime, double lateSoundSpeed,
-                        double* stepRatio = nullptr, double* stressRatio = nullptr) {
-  const double H = 0.2, W = 0.4, dx = H / 12.0, rho0 = 1500.0, g = 9.81;
+// Cohesionless soil (φ = 30°, Drucker–Prager) with a soft Murnaghan equation of state, and a
+// rigid floor of the same material.
+Material granularSoil(double rho0, double bulkModulus) {
   Material soil;
   soil.name = "soil";
   soil.eos.model = EquationOfState::Model::Murnaghan;
@@ -202,9 +204,20 @@ Collapse collapseColumn(double bulkModulus, double lateStageTime, double lateSou
   soil.strength = Material::Strength::DruckerPrager;
   soil.frictionAngle = 30.0;
   soil.cohesion = 0.0;
+  return soil;
+}
+
+Material rigidFloor(const Material& soil) {
   Material floor = soil;
   floor.name = "floor";
   floor.rigid = true;
+  return floor;
+}
+
+Collapse collapseColumn(double bulkModulus, double lateStageTime, double lateSoundSpeed,
+                        double* stepRatio = nullptr, double* stressRatio = nullptr) {
+  const double H = 0.2, W = 0.4, dx = H / 12.0, rho0 = 1500.0, g = 9.81;
+  const Material soil = granularSoil(rho0, bulkModulus), floor = rigidFloor(soil);
   SphParams par;
   par.materials = {soil, floor};
   par.gravity[2] = -g;
@@ -323,6 +336,80 @@ TEST(SphSolid, LateStageSchemeKeepsTheGranularFlowWithLongSteps) {
   EXPECT_LT(late.steps, 20000u);
   EXPECT_LT(late.kinetic, 1e-3 * late.restScale);
   EXPECT_NEAR(late.angle, 30.0, 5.0);
+}
+
+namespace {
+
+// An infinite slope of the column's soil: a layer H = 0.2 m deep, periodic along (x) and
+// across (y) the slope, on three rows of rigid floor, under gravity tilted by β. Returns the
+// soil's mean downslope velocity at each of the given times.
+std::vector<double> slopeVelocities(double betaDeg, const std::vector<double>& times) {
+  const double H = 0.2, dx = H / 10.0, rho0 = 1500.0, g = 9.81, beta = betaDeg * M_PI / 180.0;
+  const Material soil = granularSoil(rho0, 4e5);
+  SphParams par;
+  par.materials = {soil, rigidFloor(soil)};
+  par.gravity[0] = g * std::sin(beta);
+  par.gravity[2] = -g * std::cos(beta);
+  par.alpha = 0.5;
+  par.beta = 0.0;
+  const int nx = 8, ny = 4, nz = static_cast<int>(std::lround(H / dx));
+  for (int a = 0; a < 2; ++a) {
+    par.periodic[a] = true;
+    par.boxLo[a] = 0.0;
+    par.boxHi[a] = (a == 0 ? nx : ny) * dx;
+  }
+  SphState s;
+  const double m = rho0 * dx * dx * dx, rest[3] = {0, 0, 0};
+  for (int k = -3; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const double x[3] = {(i + 0.5) * dx, (j + 0.5) * dx, (k + 0.5) * dx};
+        s.add(x, rest, m, rho0, 0.0, k < 0 ? 1 : 0);
+      }
+  SphSolver solver(s, par);
+  std::vector<double> out;
+  for (double t : times) {
+    solver.advanceTo(t);
+    double mv = 0.0, mass = 0.0;
+    for (std::size_t i = 0; i < solver.state().size(); ++i)
+      if (solver.state().material[i] == 0) {
+        mv += solver.state().mass[i] * solver.state().v[3 * i];
+        mass += solver.state().mass[i];
+      }
+    out.push_back(mv / mass);
+  }
+  std::printf("infinite slope at %.1f deg: mean downslope velocity", betaDeg);
+  for (std::size_t k = 0; k < times.size(); ++k)
+    std::printf(" %.4f m/s at %.2f s%s", out[k], times[k], k + 1 < times.size() ? "," : "\n");
+  return out;
+}
+
+} // namespace
+
+// The yield law's own threshold, on an infinite slope (slopeVelocities). In steady simple shear
+// the J2 flow rule leaves only the shear stress deviatoric, so p = ρ g cosβ z and √J2 = τ =
+// ρ g sinβ z at every depth: the Drucker–Prager limit √J2 = 3B p (3B = 0.693 at φ = 30°,
+// docs/physics.md §2.5) lets the layer flow only where tanβ > 3B, β > 34.7°. At 30° the
+// layer must stop after the first yielding (loaded by gravity while laterally confined, its
+// elastic state yields above 21°) and stand: nearly still where a frictionless slide would reach g
+// sinβ t = 9.8 m/s. At 40° the layer's mean velocity gains, by its momentum balance, g (sinβ − μ_b
+// cosβ) per second with μ_b the floor's friction; for the yield law's 3B that is 1.10 m/s², of
+// which at least half must show (the artificial viscosity resists a sheared flow too). Not
+// asserted: the upper bound. The layer gains 1.60 m/s² (μ_b 0.63), and between 32° and 34° it
+// glides at 0.19 to 0.26 m/s instead of stopping (docs/validation.md, recorded): the SPH layer's
+// threshold lies near 32°, below the yield law's 34.7°. A finding, open (the floor's contact, the
+// lattice's shear resistance and the artificial viscosity are the candidates, none yet tested).
+TEST(SphSolid, InfiniteSlopeStandsBelowTheYieldAngleAndFlowsAbove) {
+  const double g = 9.81, B3 = 6.0 * 0.5 / (std::sqrt(3.0) * 2.5);
+  const std::vector<double> rest = slopeVelocities(30.0, {1.0, 2.0});
+  EXPECT_LT(std::abs(rest[0]), 0.01);
+  EXPECT_LT(std::abs(rest[1]), 0.01);
+  const double beta = 40.0 * M_PI / 180.0;
+  const std::vector<double> flow = slopeVelocities(40.0, {1.0, 2.0});
+  const double gain = flow[1] - flow[0], excess = g * (std::sin(beta) - B3 * std::cos(beta));
+  std::printf("at 40 deg: %.3f m/s^2 gained (yield law %.3f): floor friction %.3f (3B %.3f)\n",
+              gain, excess, (g * std::sin(beta) - gain) / (g * std::cos(beta)), B3);
+  EXPECT_GT(gain, 0.5 * excess);
 }
 
 // Dilated regolith is held at the density floor: a cube of the library's regolith (p = 0 in
@@ -474,4 +561,14 @@ TEST(SphSolid, GradyKippDamageGrowsInTensionOnly) {
   EXPECT_GT(pulled.first, 0.5);
   EXPECT_EQ(squeezed.second, 0.0);
   EXPECT_EQ(flawless.second, 0.0);
+}
+
+// Not a check: the sweep behind the recorded threshold in docs/validation.md. Run with
+// CK_SLOPES="32 33 34 36 37" build/bin/CraterKitUnitTests --gtest_also_run_disabled_tests
+//   --gtest_filter=SphSolid.DISABLED_InfiniteSlopeSweep
+TEST(SphSolid, DISABLED_InfiniteSlopeSweep) {
+  const char* env = std::getenv("CK_SLOPES");
+  std::istringstream in(env ? env : "32 33 34 36 37");
+  for (double beta; in >> beta;)
+    slopeVelocities(beta, {0.25, 0.5, 1.0, 2.0});
 }
