@@ -2,6 +2,7 @@
 """CraterKit's validation cases (ctest label `slow`; run them all with `scripts/test -L slow`).
 
     tests/slow/validate.py CASE --build BUILD_DIR [--results results/validation.md] [--quick]
+                           [--resume]
     tests/slow/validate.py --list
 
 Each case runs one validation, prints its figures beside their references, updates its rows
@@ -46,7 +47,7 @@ class Row:
 
     def cells(self, wall, date, commit):
         return [self.case, self.quantity, f"{self.measured:.3g}{self.unit}", self.reference,
-                self.tolerance, "PASS" if self.ok else "FAIL", f"{wall:.0f} s", date, commit]
+                self.tolerance, "PASS" if self.ok else "FAIL", wall, date, commit]
 
 
 def within(measured, reference, fraction):
@@ -102,7 +103,8 @@ def sph_column_flank(args):
 def sci_run(args, name, gravity, particles, packings, extra):
     out = os.path.join(args.build, "slow", name)
     cmd = [sys.executable if sys.executable else "python3",
-           os.path.join(ROOT, "benchmarks/sci_crater/run.py"), "--gravity", repr(gravity),
+           os.path.join(ROOT, "benchmarks/sci_crater/run.py")] + (["--resume"] if args.resume else []) + \
+          ["--gravity", repr(gravity),
            "--particles"] + [str(n) for n in particles] + ["--packings"] + packings + \
           ["--output", out, "--"] + extra
     subprocess.call(cmd)  # run.py's own PASS/FAIL is not this case's verdict
@@ -255,7 +257,7 @@ def update_table(path, case, rows, wall):
                 if line.startswith("| ") and cells[0] not in ("case", case) and not set(cells[0]) <= {"-"}:
                     kept.append(cells)
     date = datetime.date.today().isoformat()
-    kept += [row.cells(wall, date, commit()) for row in rows]
+    kept += [row.cells(wall, date, commit()) for row in rows]  # wall: the cell's text
     kept.sort(key=lambda cells: cells[0])
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     with open(path, "w") as f:
@@ -274,6 +276,9 @@ def main(argv):
     p.add_argument("--list", action="store_true")
     p.add_argument("--quick", action="store_true",
                    help="the hvi cases at a small size, to check that they run (figures not meaningful)")
+    p.add_argument("--resume", action="store_true",
+                   help="the SCI cases: continue an interrupted run from its checkpoints (the wall "
+                        "time then counts the resumed part only, and says so)")
     args = p.parse_args(argv)
     if args.list or not args.case:
         for name, fn in sorted(CASES.items()):
@@ -282,7 +287,8 @@ def main(argv):
     start = time.time()
     rows = CASES[args.case](args)
     wall = time.time() - start
-    update_table(args.results, args.case, rows, wall)
+    update_table(args.results, args.case, rows,
+                 f"{wall:.0f} s" + (" (resumed run's part)" if args.resume else ""))
     for row in rows:
         print(f"{'PASS' if row.ok else 'FAIL'}: {row.case}: {row.quantity} = {row.measured:.3g}{row.unit} "
               f"(reference {row.reference}, tolerance {row.tolerance})")
