@@ -3,12 +3,15 @@
 #include "common/AtomicWrite.h"
 #include "common/CellList.h"
 #include "common/Error.h"
+#include "sph/SimdClones.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
+#include <utility>
 
 namespace craterkit {
 namespace {
@@ -30,6 +33,81 @@ template <class F> double chunkedSum(std::size_t n, F&& f) {
   double total = 0.0;
   for (double p : part)
     total += p;
+  return total;
+}
+
+// List entries' rest lengths: no intact bond; a bond the current pass found beyond r_cut.
+constexpr double kNoBond = std::numeric_limits<double>::infinity();
+constexpr double kBreaking = -1.0;
+
+struct BlockPass {
+  const double* x;
+  std::size_t n;
+  const std::size_t* blockStart;
+  const std::uint32_t* partner;
+  double* rest;
+  std::uint32_t* breaks;
+  double* force;
+  double* v; // null: forces only; else the second half kick too
+  const double* m;
+  double halfStep;
+  ws2017::PairTerms terms;
+  double rCut2;
+};
+
+// The forces on the particles of blocks [b0, b1): eight particles side by side, each lane
+// summing its particle's entries in list order. An intact bond beyond r_cut is marked
+// kBreaking, contributes its repulsion only, and is counted in its block. Cloned for AVX-512
+// (sph/SimdClones.h), where the lane loop is one instruction wide; the two differ by rounding.
+constexpr std::size_t kPassLanes = 8;
+
+CK_SIMD_CLONES long blockForces(const BlockPass& p, std::size_t b0, std::size_t b1) {
+  constexpr std::size_t L = kPassLanes;
+  const double* x = p.x;
+  const ws2017::PairTerms terms = p.terms;
+  const double rCut2 = p.rCut2;
+  long total = 0;
+  for (std::size_t b = b0; b < b1; ++b) {
+    double xi[L], yi[L], zi[L], fx[L], fy[L], fz[L];
+    for (std::size_t l = 0; l < L; ++l) {
+      const std::size_t i = std::min(p.n - 1, b * L + l);
+      xi[l] = x[3 * i], yi[l] = x[3 * i + 1], zi[l] = x[3 * i + 2];
+      fx[l] = fy[l] = fz[l] = 0.0;
+    }
+    std::uint32_t broke = 0;
+    for (std::size_t e = p.blockStart[b]; e < p.blockStart[b + 1]; e += L) {
+      const std::uint32_t* J = p.partner + e;
+      double* R0 = p.rest + e;
+#pragma omp simd reduction(+ : broke)
+      for (std::size_t l = 0; l < L; ++l) {
+        const std::size_t j = J[l];
+        const double dx = xi[l] - x[3 * j], dy = yi[l] - x[3 * j + 1], dz = zi[l] - x[3 * j + 2];
+        const double r2 = dx * dx + dy * dy + dz * dz;
+        const double r0 = R0[l];
+        const bool breaks = (r0 < kNoBond) & (r2 > rCut2); // Section 2.2.2: for good
+        const double f = ws2017::pairForceOverR(r2, breaks ? kNoBond : r0, terms);
+        if (breaks)
+          R0[l] = kBreaking;
+        broke += breaks;
+        fx[l] += f * dx;
+        fy[l] += f * dy;
+        fz[l] += f * dz;
+      }
+    }
+    p.breaks[b] = broke;
+    total += broke;
+    const std::size_t lanes = std::min(L, p.n - b * L);
+    for (std::size_t l = 0; l < lanes; ++l) {
+      const std::size_t i = b * L + l;
+      double* f = p.force + 3 * i;
+      f[0] = fx[l], f[1] = fy[l], f[2] = fz[l];
+      if (p.v) {
+        const double h = p.halfStep / p.m[i];
+        for (int k = 0; k < 3; ++k)
+          p.v[3 * i + k] += h * f[k];
+      }
+    }
+  }
   return total;
 }
 
@@ -81,10 +159,10 @@ BondedSolver::BondedSolver(BondedSystem system, const BondedSolverParams& params
   bondBroken_.assign(sys_.bonds.size(), 0);
   force_.assign(3 * n, 0.0);
   prepare();
-  computeForces();
+  computeForces(false);
 }
 
-// Bond adjacency (each particle's bonds in index order) and the neighbour list.
+// Bond adjacency (each particle's bonds in index order) and the pair lists.
 void BondedSolver::prepare() {
   const std::size_t n = sys_.size();
   for (const BondedBond& b : sys_.bonds)
@@ -103,127 +181,139 @@ void BondedSolver::prepare() {
     bondsOf_[fill[sys_.bonds[b].i]++] = static_cast<std::uint32_t>(b);
     bondsOf_[fill[sys_.bonds[b].j]++] = static_cast<std::uint32_t>(b);
   }
-  bondForce_.assign(3 * sys_.bonds.size(), 0.0);
-  buildNeighbours();
+  buildPairs();
 }
 
-void BondedSolver::buildNeighbours() {
-  const std::size_t n = sys_.size();
+// Each particle's list: every particle within r_eq + skin and every intact bonded partner,
+// sorted by index, a bonded pair once with its rest length.
+void BondedSolver::buildPairs() {
+  const std::size_t n = sys_.size(), blocks = (n + kLanes - 1) / kLanes;
   const double* x = sys_.positions.data();
   const double reach = sys_.law.rEq() + params_.skin * sys_.law.sigma, reach2 = reach * reach;
   CellList cells;
   cells.build(x, n, reach);
-  neighbourStart_.assign(n + 1, 0);
-  auto scan = [&](std::size_t i, auto&& take) {
+  using Entry = std::pair<std::uint32_t, double>;
+  auto collect = [&](std::size_t i, std::vector<Entry>& out) {
+    out.clear();
     cells.forEachCandidate(x + 3 * i, reach, [&](std::size_t j) {
       const double dx = x[3 * j] - x[3 * i], dy = x[3 * j + 1] - x[3 * i + 1],
                    dz = x[3 * j + 2] - x[3 * i + 2];
       if (j != i && dx * dx + dy * dy + dz * dz < reach2)
-        take(j);
+        out.emplace_back(static_cast<std::uint32_t>(j), kNoBond);
     });
+    for (std::size_t s = bondStart_[i]; s < bondStart_[i + 1]; ++s) {
+      const BondedBond& b = sys_.bonds[bondsOf_[s]];
+      if (!bondBroken_[bondsOf_[s]])
+        out.emplace_back(b.i == i ? b.j : b.i, b.rest);
+    }
+    std::sort(out.begin(), out.end()); // a bonded pair's finite rest length first: kept
+    out.erase(std::unique(out.begin(), out.end(),
+                          [](const Entry& a, const Entry& b) { return a.first == b.first; }),
+              out.end());
   };
-  const long nl = static_cast<long>(n);
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < nl; ++i) {
-    std::size_t count = 0;
-    scan(static_cast<std::size_t>(i), [&](std::size_t) { ++count; });
-    neighbourStart_[i + 1] = count;
+  // One scan per particle: the lists are staged per chunk of blocks, then laid out in blocks
+  // once every block's depth (its longest list) is known.
+  constexpr std::size_t kChunkBlocks = 256;
+  const std::size_t chunks = (blocks + kChunkBlocks - 1) / kChunkBlocks;
+  std::vector<std::vector<Entry>> staged(chunks);
+  std::vector<std::uint32_t> count(n);
+  blockStart_.assign(blocks + 1, 0);
+  const long nc = static_cast<long>(chunks);
+#pragma omp parallel
+  {
+    std::vector<Entry> list;
+#pragma omp for schedule(dynamic)
+    for (long c = 0; c < nc; ++c) {
+      const std::size_t b0 = static_cast<std::size_t>(c) * kChunkBlocks;
+      for (std::size_t b = b0; b < std::min(blocks, b0 + kChunkBlocks); ++b) {
+        std::size_t depth = 0;
+        for (std::size_t i = b * kLanes; i < std::min(n, (b + 1) * kLanes); ++i) {
+          collect(i, list);
+          count[i] = static_cast<std::uint32_t>(list.size());
+          staged[c].insert(staged[c].end(), list.begin(), list.end());
+          depth = std::max(depth, list.size());
+        }
+        blockStart_[b + 1] = depth * kLanes;
+      }
+    }
   }
-  for (std::size_t i = 0; i < n; ++i)
-    neighbourStart_[i + 1] += neighbourStart_[i];
-  neighbours_.resize(neighbourStart_[n]);
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < nl; ++i) {
-    std::size_t at = neighbourStart_[i];
-    scan(static_cast<std::size_t>(i),
-         [&](std::size_t j) { neighbours_[at++] = static_cast<std::uint32_t>(j); });
-    std::sort(neighbours_.begin() + neighbourStart_[i], neighbours_.begin() + at);
+  for (std::size_t b = 0; b < blocks; ++b)
+    blockStart_[b + 1] += blockStart_[b];
+  partner_.resize(blockStart_[blocks]);
+  rest_.resize(blockStart_[blocks]);
+#pragma omp parallel for schedule(dynamic)
+  for (long c = 0; c < nc; ++c) {
+    const std::size_t b0 = static_cast<std::size_t>(c) * kChunkBlocks;
+    const Entry* from = staged[static_cast<std::size_t>(c)].data();
+    for (std::size_t b = b0; b < std::min(blocks, b0 + kChunkBlocks); ++b)
+      for (std::size_t l = 0, i = b * kLanes; l < kLanes; ++l, ++i) {
+        const std::size_t listed = i < n ? count[i] : 0, self = std::min(n - 1, i);
+        for (std::size_t e = blockStart_[b] + l, k = 0; e < blockStart_[b + 1]; e += kLanes, ++k) {
+          partner_[e] = k < listed ? from[k].first : static_cast<std::uint32_t>(self);
+          rest_[e] = k < listed ? from[k].second : kNoBond;
+        }
+        from += listed;
+      }
   }
+  blockBreaks_.assign(blocks, 0);
   listOrigin_ = sys_.positions;
 }
 
-bool BondedSolver::needsRebuild() const {
-  const double half = 0.5 * params_.skin * sys_.law.sigma, limit = half * half;
-  const long n3 = static_cast<long>(sys_.positions.size());
-  const double* x = sys_.positions.data();
-  const double* o = listOrigin_.data();
-  double worst = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : worst)
-  for (long k = 0; k < n3; k += 3) {
-    const double dx = x[k] - o[k], dy = x[k + 1] - o[k + 1], dz = x[k + 2] - o[k + 2];
-    worst = std::max(worst, dx * dx + dy * dy + dz * dz);
-  }
-  return worst > limit;
-}
-
-void BondedSolver::computeForces() {
-  const double* x = sys_.positions.data();
+void BondedSolver::computeForces(bool kick) {
+  const std::size_t n = sys_.size(), blocks = blockStart_.size() - 1;
+  static_assert(kLanes == kPassLanes, "the pass and the lists' blocks must agree");
   const ws2017::Law& law = sys_.law;
-  const double rc2 = law.rCut * law.rCut;
-  const long nb = static_cast<long>(sys_.bonds.size());
+  BlockPass pass;
+  pass.x = sys_.positions.data();
+  pass.n = n;
+  pass.blockStart = blockStart_.data();
+  pass.partner = partner_.data();
+  pass.rest = rest_.data();
+  pass.breaks = blockBreaks_.data();
+  pass.force = force_.data();
+  pass.v = kick ? sys_.velocities.data() : nullptr;
+  pass.m = sys_.masses.data();
+  pass.halfStep = 0.5 * dt_;
+  pass.terms = {law.sigma * law.sigma, law.epsilon, law.kappa, law.rEq() * law.rEq()};
+  pass.rCut2 = law.rCut * law.rCut;
+  constexpr std::size_t kChunk = 64; // blocks per call
+  const long chunks = static_cast<long>((blocks + kChunk - 1) / kChunk);
   long newlyBroken = 0;
-#pragma omp parallel for schedule(static) reduction(+ : newlyBroken)
-  for (long b = 0; b < nb; ++b) {
-    double* fb = &bondForce_[3 * b];
-    fb[0] = fb[1] = fb[2] = 0.0;
-    if (bondBroken_[b])
-      continue;
-    const BondedBond& bond = sys_.bonds[b];
-    const double dx = x[3 * bond.j] - x[3 * bond.i], dy = x[3 * bond.j + 1] - x[3 * bond.i + 1],
-                 dz = x[3 * bond.j + 2] - x[3 * bond.i + 2];
-    const double r2 = dx * dx + dy * dy + dz * dz;
-    if (r2 > rc2) { // broken for good (Section 2.2.2)
-      bondBroken_[b] = 2;
-      ++newlyBroken;
-      continue;
-    }
-    double fOverR;
-    ws2017::bondSpring(std::sqrt(r2), bond.rest, law.kappa, fOverR);
-    fb[0] = fOverR * dx;
-    fb[1] = fOverR * dy;
-    fb[2] = fOverR * dz;
-  }
+  // Dynamic: a thread that loses its core for a while leaves its chunks to the others; which
+  // thread computes a particle does not change its bits.
+#pragma omp parallel for schedule(dynamic) reduction(+ : newlyBroken)
+  for (long c = 0; c < chunks; ++c)
+    newlyBroken += blockForces(pass, static_cast<std::size_t>(c) * kChunk,
+                               std::min(blocks, (static_cast<std::size_t>(c) + 1) * kChunk));
   if (newlyBroken > 0)
     bookBreaks();
-
-  const double rEq2 = law.rEq() * law.rEq(), sigma2 = law.sigma * law.sigma;
-  const long n = static_cast<long>(sys_.size());
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i) {
-    double f[3] = {0.0, 0.0, 0.0};
-    const double* xi = x + 3 * i;
-    for (std::size_t s = neighbourStart_[i]; s < neighbourStart_[i + 1]; ++s) {
-      const double* xj = x + 3 * static_cast<std::size_t>(neighbours_[s]);
-      const double dx = xi[0] - xj[0], dy = xi[1] - xj[1], dz = xi[2] - xj[2];
-      const double r2 = dx * dx + dy * dy + dz * dz;
-      if (!(r2 < rEq2))
-        continue;
-      double fOverR;
-      ws2017::repulsion(r2, sigma2, law.epsilon, fOverR);
-      f[0] += fOverR * dx;
-      f[1] += fOverR * dy;
-      f[2] += fOverR * dz;
-    }
-    for (std::size_t s = bondStart_[i]; s < bondStart_[i + 1]; ++s) {
-      const std::uint32_t b = bondsOf_[s];
-      const double* fb = &bondForce_[3 * static_cast<std::size_t>(b)];
-      const double sign = sys_.bonds[b].i == static_cast<std::uint32_t>(i) ? 1.0 : -1.0;
-      f[0] += sign * fb[0];
-      f[1] += sign * fb[1];
-      f[2] += sign * fb[2];
-    }
-    force_[3 * i] = f[0];
-    force_[3 * i + 1] = f[1];
-    force_[3 * i + 2] = f[2];
-  }
 }
 
 // Serial and in bond order, so the dissipated energy has the same bits for any thread count.
+// The entries marked by the pass become plain neighbours; each bond is found from its lower
+// particle's side (both sides broke it alike).
 void BondedSolver::bookBreaks() {
-  const double* x = sys_.positions.data();
-  for (std::size_t b = 0; b < sys_.bonds.size(); ++b) {
-    if (bondBroken_[b] != 2)
+  const std::size_t n = sys_.size();
+  std::vector<std::uint32_t> ids;
+  for (std::size_t b = 0; b < blockBreaks_.size(); ++b) {
+    if (blockBreaks_[b] == 0)
       continue;
+    blockBreaks_[b] = 0;
+    for (std::size_t e = blockStart_[b]; e < blockStart_[b + 1]; ++e) {
+      if (rest_[e] != kBreaking)
+        continue;
+      rest_[e] = kNoBond;
+      const std::size_t i = b * kLanes + (e - blockStart_[b]) % kLanes, j = partner_[e];
+      if (i >= j || i >= n)
+        continue;
+      for (std::size_t s = bondStart_[i]; s < bondStart_[i + 1]; ++s)
+        if (sys_.bonds[bondsOf_[s]].j == j)
+          ids.push_back(bondsOf_[s]);
+    }
+  }
+  std::sort(ids.begin(), ids.end());
+  const double* x = sys_.positions.data();
+  for (std::uint32_t b : ids) {
     const BondedBond& bond = sys_.bonds[b];
     const double dx = x[3 * bond.j] - x[3 * bond.i], dy = x[3 * bond.j + 1] - x[3 * bond.i + 1],
                  dz = x[3 * bond.j + 2] - x[3 * bond.i + 2];
@@ -235,29 +325,33 @@ void BondedSolver::bookBreaks() {
   }
 }
 
+// Velocity Verlet: half kick and drift (with the largest move since the list was built), the
+// lists rebuilt if a particle may have crossed half the skin, then the forces and, in the same
+// pass, the second half kick.
 void BondedSolver::step() {
   const long n = static_cast<long>(sys_.size());
   double* x = sys_.positions.data();
   double* v = sys_.velocities.data();
   const double* m = sys_.masses.data();
+  const double* o = listOrigin_.data();
   const double dt = dt_;
-#pragma omp parallel for schedule(static)
+  double worst = 0.0;
+#pragma omp parallel for schedule(dynamic, 2048) reduction(max : worst)
   for (long i = 0; i < n; ++i) {
     const double h = 0.5 * dt / m[i];
+    double d2 = 0.0;
     for (int k = 0; k < 3; ++k) {
       v[3 * i + k] += h * force_[3 * i + k];
       x[3 * i + k] += dt * v[3 * i + k];
+      const double d = x[3 * i + k] - o[3 * i + k];
+      d2 += d * d;
     }
+    worst = std::max(worst, d2);
   }
-  if (needsRebuild())
-    buildNeighbours();
-  computeForces();
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i) {
-    const double h = 0.5 * dt / m[i];
-    for (int k = 0; k < 3; ++k)
-      v[3 * i + k] += h * force_[3 * i + k];
-  }
+  const double half = 0.5 * params_.skin * sys_.law.sigma;
+  if (worst > half * half)
+    buildPairs();
+  computeForces(true);
   ++step_;
 }
 
@@ -291,8 +385,9 @@ BondedEnergies BondedSolver::energies() const {
   const double rEq2 = law.rEq() * law.rEq(), sigma2 = law.sigma * law.sigma;
   e.repulsive = chunkedSum(sys_.size(), [&](std::size_t i) {
     double s = 0.0, unused;
-    for (std::size_t k = neighbourStart_[i]; k < neighbourStart_[i + 1]; ++k) {
-      const std::size_t j = neighbours_[k];
+    const std::size_t b = i / kLanes;
+    for (std::size_t k = blockStart_[b] + i % kLanes; k < blockStart_[b + 1]; k += kLanes) {
+      const std::size_t j = partner_[k];
       const double dx = x[3 * i] - x[3 * j], dy = x[3 * i + 1] - x[3 * j + 1],
                    dz = x[3 * i + 2] - x[3 * j + 2];
       const double r2 = dx * dx + dy * dy + dz * dz;

@@ -5,18 +5,26 @@
 // bond period 2π√(m/κ); the default fraction gives the paper's 1e-10 s at its headline size
 // and, since m ∝ σ³ and κ ∝ σ, scales with σ like every other time of the sized model.
 //
-// Repulsion acts between every pair closer than r_eq; the pairs come from a full Verlet list
-// (within r_eq + skin, built with the common CellList, rebuilt when a particle has moved more
-// than half the skin), each particle's neighbours sorted by index. Bonds come from the bond
-// list; each step, after the drift, every intact bond longer than r_cut is broken for good and
-// its spring energy is booked as dissipated (so that kinetic + repulsive + bond + dissipated
-// energy is what the integrator conserves).
+// Every pair of particles is handled in one fused pass per particle over its pair list: the
+// particles it may touch before the next rebuild (a full Verlet list: all particles within
+// r_eq + skin, built with the common CellList, rebuilt when a particle has moved more than half
+// the skin) together with its bonded partners however far, each entry carrying the rest length
+// of its intact bond (or none). One entry gives the pair's repulsion (closer than r_eq) and
+// spring (stretched bond) at once (ws2017::pairForceOverR), and each pair is computed twice,
+// once from each side, with exactly opposite results. The lists are stored in blocks of eight
+// particles, entry k of the eight particles side by side (padded with the particle itself, which
+// contributes nothing), so that the pass runs eight particles per SIMD instruction with every
+// particle's own sum in its own lane, in the order of its list. Each step, after the drift, a
+// bond longer than r_cut is broken for good by both its particles' passes alike (the squared
+// distance has the same bits from either side); its spring energy is booked as dissipated (so
+// that kinetic + repulsive + bond + dissipated energy is what the integrator conserves).
 //
-// OpenMP without atomics: each bond writes its force to its own slot, each particle sums its
-// neighbours and then its bonds in index order, and energies are summed over fixed-size chunks
-// in chunk order. Results are therefore bit-identical for any thread count; and because pairs
-// out of range contribute nothing and sums keep their order, a run restored from a checkpoint
-// (which stores positions, velocities, forces and bond states) continues bit-identically.
+// OpenMP without atomics (chunks handed out dynamically, which changes no result): each particle
+// sums its own list entries in index order of the partners, and energies are summed over fixed-size
+// chunks in chunk order. Results are therefore bit-identical for any thread count; and because
+// pairs out of range contribute an exact zero and sums keep their order, a run restored from a
+// checkpoint (which stores positions, velocities, forces and bond states) continues
+// bit-identically.
 #pragma once
 
 #include "bonded/BondedBody.h"
@@ -72,9 +80,8 @@ public:
 private:
   BondedSolver() = default;
   void prepare();
-  void buildNeighbours();
-  bool needsRebuild() const;
-  void computeForces();
+  void buildPairs();
+  void computeForces(bool kick);
   void bookBreaks();
 
   BondedSystem sys_;
@@ -83,10 +90,17 @@ private:
   std::uint64_t step_ = 0;
   std::size_t broken_ = 0;
   double dissipated_ = 0.0;
-  std::vector<double> force_, bondForce_, listOrigin_;
-  std::vector<std::uint8_t> bondBroken_; // 0 intact, 1 broken, 2 broken this step
-  std::vector<std::size_t> neighbourStart_, bondStart_;
-  std::vector<std::uint32_t> neighbours_, bondsOf_;
+  std::vector<double> force_, listOrigin_;
+  std::vector<std::uint8_t> bondBroken_; // 0 intact, 1 broken
+  std::vector<std::size_t> bondStart_;   // each particle's bonds: bondsOf_[bondStart_[i]...]
+  std::vector<std::uint32_t> bondsOf_;
+  // Pair lists in blocks of kLanes particles: block b's entries are [blockStart_[b],
+  // blockStart_[b + 1]), entry k of its lane l at blockStart_[b] + k kLanes + l.
+  static constexpr std::size_t kLanes = 8;
+  std::vector<std::size_t> blockStart_;
+  std::vector<std::uint32_t> partner_;     // the other particle (the particle itself: padding)
+  std::vector<double> rest_;               // rest length of the pair's intact bond, or +∞
+  std::vector<std::uint32_t> blockBreaks_; // bonds broken in the last pass, per block
 };
 
 } // namespace craterkit

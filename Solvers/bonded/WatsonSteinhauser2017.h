@@ -19,6 +19,7 @@
 // resized to any other σ through γ, λ and r_cut/σ (Eqs. 5–11); masses come from Eq. 20.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 
 namespace craterkit {
@@ -87,6 +88,27 @@ inline double bondSpring(double r, double r0, double kappa, double& forceOverR) 
   const double stretch = r - r0;
   forceOverR = kappa * stretch / r;
   return 0.5 * kappa * stretch * stretch;
+}
+
+// Constants of pairForceOverR: σ², ε, κ and r_eq².
+struct PairTerms {
+  double sigma2 = 0.0, epsilon = 0.0, kappa = 0.0, rEq2 = 0.0;
+};
+
+// Eqs. 3 and 4 of one pair at once, for the solver's pair loop: returns forceOverR so that the
+// force on i is forceOverR · (x_i − x_j), the repulsion (as repulsion() above, for 0 < r² <
+// r_eq²) minus the pull of an intact bond of rest length r0 (as bondSpring() above, for r > r0;
+// r0 = +∞ where the pair has no intact bond). Branch-free (both terms are computed and the
+// unused one is dropped by a select), with one division and one square root, so that a loop over
+// pairs vectorises; it differs from the two functions above only by rounding. r² = 0 gives 0.
+inline double pairForceOverR(double r2, double r0, const PairTerms& p) {
+  const double inv = 1.0 / r2;
+  const double s2 = p.sigma2 * inv, s6 = s2 * s2 * s2;
+  const bool near = (r2 < p.rEq2) & (r2 > 0.0);
+  const double repel = near ? 24.0 * p.epsilon * s6 * (2.0 * s6 - 1.0) * inv : 0.0;
+  const double r = std::sqrt(r2);
+  const double pull = r > r0 ? p.kappa * (r - r0) * (r * inv) : 0.0; // κ (r − r0) / r
+  return repel - pull;
 }
 
 } // namespace ws2017
