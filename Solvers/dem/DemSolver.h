@@ -6,8 +6,9 @@
 // rebuilt only when a particle has moved more than half the skin; contact histories are
 // carried across rebuilds by merging the sorted pair lists.
 //
-// Forces are computed in two passes so that OpenMP never needs atomics: each pair writes
-// its force and torques to its own slot, then each particle sums its pairs in index order.
+// Forces are computed in two passes so that OpenMP never needs atomics: each pair in contact
+// writes its force and torques to its own slot, then each particle sums its pairs in contact
+// in index order (reading only the contact flags of the others).
 // A new run first orders the particles along a Morton curve of their cells, so that
 // neighbours sit close in memory (the output keeps each particle's Id, not its input
 // position). The result is bit-identical for any thread count, and a run resumed from a checkpoint

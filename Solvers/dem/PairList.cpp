@@ -63,7 +63,11 @@ void PairList::build(const double* x, const double* r, std::size_t n, double rma
   for (std::size_t i = 0; i < n; ++i)
     start[i + 1] = start[i] + count[i + 1];
   const std::size_t pairs = start[n];
-  std::vector<std::uint32_t> newI(pairs), newJ(pairs);
+  // The new list goes into the spare buffers of the last build, which keep their memory:
+  // fresh allocations of this size would cost a page fault per 4 kB at every rebuild.
+  std::vector<std::uint32_t>&newI = spareFirst_, &newJ = spareSecond_;
+  newI.resize(pairs);
+  newJ.resize(pairs);
 #pragma omp parallel if (n >= kDemParallelMin)
   {
     std::vector<std::uint32_t> buffer;
@@ -77,21 +81,35 @@ void PairList::build(const double* x, const double* r, std::size_t n, double rma
                 static_cast<std::uint32_t>(i));
     }
   }
-  // Carry histories of pairs that stay in the list (both lists sorted by (i, j)).
-  std::vector<ContactHistory> newHistory(pairs);
-  std::vector<char> newActive(pairs, 0);
-  forCommonPairs(first, second, newI, newJ, [&](std::size_t a, std::size_t b) {
+  // Carry the histories of pairs in contact that stay in the list (both lists sorted by
+  // (i, j)); every other slot starts empty. Each new slot is written once.
+  std::vector<ContactHistory>& newHistory = spareHistory_;
+  std::vector<char>& newActive = spareActive_;
+  newHistory.resize(pairs);
+  newActive.resize(pairs);
+  std::size_t b = 0;
+  forCommonPairs(first, second, newI, newJ, [&](std::size_t a, std::size_t same) {
+    for (; b < same; ++b) {
+      newHistory[b].clear();
+      newActive[b] = 0;
+    }
     newHistory[b] = history[a];
     newActive[b] = active[a];
+    ++b;
   });
+  for (; b < pairs; ++b) {
+    newHistory[b].clear();
+    newActive[b] = 0;
+  }
   first.swap(newI);
   second.swap(newJ);
   history.swap(newHistory);
   active.swap(newActive);
   firstStart.swap(start);
-  force.assign(3 * pairs, 0.0);
-  torqueFirst.assign(3 * pairs, 0.0);
-  torqueSecond.assign(3 * pairs, 0.0);
+  // Written by the force pass for the pairs in contact; read only for those.
+  force.resize(3 * pairs);
+  torqueFirst.resize(3 * pairs);
+  torqueSecond.resize(3 * pairs);
   // Pairs in which each particle is the second member, in increasing order of the first.
   secondStart.assign(n + 1, 0);
   for (std::size_t k = 0; k < pairs; ++k)

@@ -47,8 +47,9 @@ template <class Same> std::size_t forCommonPairs(const std::vector<std::uint32_t
 struct PairList {
   std::vector<std::uint32_t> first, second; // the pair's particles, first < second
   std::vector<ContactHistory> history;
-  std::vector<char> active;                             // in contact at the last force evaluation
-  std::vector<double> force, torqueFirst, torqueSecond; // 3 per pair, of the last evaluation
+  std::vector<char> active; // in contact at the last force evaluation
+  // 3 per pair, of the last force evaluation; only the slots of active pairs are meaningful.
+  std::vector<double> force, torqueFirst, torqueSecond;
   std::vector<std::size_t> firstStart;  // n + 1: pairs firstStart[i] .. firstStart[i+1]-1 have i
   std::vector<std::size_t> secondStart; // n + 1: into secondPair
   std::vector<std::size_t> secondPair;  // pairs by second member, in increasing order of first
@@ -62,6 +63,12 @@ struct PairList {
   // Drops the pairs of removed particles and renumbers the rest (newIndex is increasing,
   // so the list stays sorted). The per-particle indices need a build() afterwards.
   void removeParticles(const std::vector<char>& remove, const std::vector<std::uint32_t>& newIndex);
+
+private:
+  // The previous build's arrays, reused by the next one.
+  std::vector<std::uint32_t> spareFirst_, spareSecond_;
+  std::vector<ContactHistory> spareHistory_;
+  std::vector<char> spareActive_;
 };
 
 } // namespace craterkit
