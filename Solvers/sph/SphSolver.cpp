@@ -148,12 +148,17 @@ struct Packed {
 };
 // Per-thread buffers of one particle's interacting neighbours.
 struct Scratch {
-  std::vector<std::uint32_t> idx;
+  // 64-bit like the doubles: with 32-bit indices the compiler runs the pair loop sixteen wide,
+  // two vectors per sum, which spills the sums to memory and leaves up to 15 pairs to scalar code.
+  std::vector<std::uint64_t> idx;
   std::vector<double> rx, ry, rz, r2;
   void resize(std::size_t n) {
     idx.resize(n), rx.resize(n), ry.resize(n), rz.resize(n), r2.resize(n);
   }
 };
+
+// The pair stream is padded to a multiple of the AVX-512 vector's eight doubles.
+constexpr std::size_t kLanes = 8;
 
 // What one particle's neighbours add up to (§2.2, §2.3).
 struct PairSums {
@@ -166,41 +171,62 @@ struct PairConstants {
   double period[3]; // box lengths of the periodic axes
 };
 
-// The pair terms of particle A over its listed neighbours `entries` (index * 32 + image
-// code). Cloned (sph/SimdClones.h) for x86-64-v4 (AVX-512), chosen at run time where the processor
-// has it: its 32 vector registers hold the loop's 17 sums and temporaries, so the pair loop runs
-// eight pairs wide (27 % less time for the SCI-like run here; AVX2, with 16 registers, spills and
-// gains nothing). Elsewhere the generic code runs. The two differ only by rounding.
-template <class K, bool Xsph>
-CK_SIMD_CLONES PairSums pairSums(const Packed* Pp, const Packed& A, const std::uint32_t* entries,
-                                 std::uint32_t count, Scratch& w, const PairConstants& pc) {
-  // Pass 1: the listed neighbours inside the pair's support, with their separations.
-  if (w.idx.size() < count)
-    w.resize(count);
+// Pass 1 of the pair terms: the entries of `entries` (index * 32 + image code) inside the pair's
+// support, with their separations, packed into w and padded to whole vectors; returns their
+// number with the padding. A function of its own so that its few pointers stay in registers
+// (inside pairSums they were reloaded from the stack at every entry).
+template <bool Periodic>
+std::size_t supportStream(const Packed* Pp, std::uint32_t self, const std::uint32_t* entries,
+                          std::uint32_t count, Scratch& w, const PairConstants& pc) {
+  if (w.idx.size() < count + kLanes)
+    w.resize(count + kLanes);
+  std::uint64_t* __restrict wi = w.idx.data();
+  double* __restrict wx = w.rx.data();
+  double* __restrict wy = w.ry.data();
+  double* __restrict wz = w.rz.data();
+  double* __restrict w2 = w.r2.data();
+  const Packed& A = Pp[self];
+  const double ax = A.x[0], ay = A.x[1], az = A.x[2], ah = A.h;
   std::size_t m = 0;
   for (std::uint32_t k = 0; k < count; ++k) {
     const std::uint32_t code = entries[k];
     const Packed& B = Pp[code >> 5];
-    double rx = A.x[0] - B.x[0], ry = A.x[1] - B.x[1], rz = A.x[2] - B.x[2];
-    if (pc.periodic && (code & 31u) != kNoShift) {
+    double rx = ax - B.x[0], ry = ay - B.x[1], rz = az - B.x[2];
+    if (Periodic && (code & 31u) != kNoShift) {
       const std::uint32_t c = code & 31u;
       rx -= (static_cast<int>(c % 3) - 1) * pc.period[0];
       ry -= (static_cast<int>(c / 3 % 3) - 1) * pc.period[1];
       rz -= (static_cast<int>(c / 9) - 1) * pc.period[2];
     }
     const double r2 = rx * rx + ry * ry + rz * rz;
-    const double hb = 0.5 * (A.h + B.h);
+    const double hb = 0.5 * (ah + B.h);
     // Written always, kept only inside the support: no branch to mispredict (about a third
     // of the listed pairs are in the list's margin).
-    w.idx[m] = code >> 5;
-    w.rx[m] = rx, w.ry[m] = ry, w.rz[m] = rz, w.r2[m] = r2;
+    wi[m] = code >> 5;
+    wx[m] = rx, wy[m] = ry, wz[m] = rz, w2[m] = r2;
     m += (r2 < hb * hb) & (r2 != 0.0);
   }
-  // Pass 2: the pair terms, branch-free so that the compiler vectorises the loop.
+  // Padded so that pass 2 never runs its scalar remainder (which took a fifth of its time): the
+  // particle itself at zero separation, with r2 = (h/2)² only to keep the kernel finite. Each
+  // of its terms carries a factor r_ab or v_ab, so it adds exact zeros.
+  for (; m % kLanes != 0; ++m)
+    wi[m] = self, wx[m] = 0.0, wy[m] = 0.0, wz[m] = 0.0, w2[m] = 0.25 * ah * ah;
+  return m;
+}
+
+// Pass 2: the pair terms of particle A over the m pairs of supportStream in w. Cloned
+// (sph/SimdClones.h) for x86-64-v4 (AVX-512), chosen at run time where the processor has it:
+// its 32 vector registers hold the loop's 17 sums and temporaries, so the pair loop runs eight
+// pairs wide (27 % less time for the SCI-like run here; AVX2, with 16 registers, spills and
+// gains nothing). Elsewhere the generic code runs. The two differ only by rounding.
+template <class K, bool Xsph> CK_SIMD_CLONES PairSums pairSums(const Packed* Pp, const Packed& A,
+                                                               std::size_t m, const Scratch& w,
+                                                               const PairConstants& pc) {
+  // Branch-free so that the compiler vectorises the loop.
   double acc0 = 0, acc1 = 0, acc2 = 0, dr = 0, de = 0, sig = 0;
   double g0 = 0, g1 = 0, g2 = 0, g3 = 0, g4 = 0, g5 = 0, g6 = 0, g7 = 0, g8 = 0, xs0 = 0, xs1 = 0,
          xs2 = 0;
-  const std::uint32_t* idx = w.idx.data();
+  const std::uint64_t* idx = w.idx.data();
   const double *RX = w.rx.data(), *RY = w.ry.data(), *RZ = w.rz.data(), *R2 = w.r2.data();
   const double* sa = A.s;
   const double sa0 = sa[0], sa1 = sa[1], sa2 = sa[2], sa3 = sa[3], sa4 = sa[4], sa5 = sa[5];
@@ -313,9 +339,12 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
     PairConstants pcA = pc;
     pcA.gradOn = solid ? 1.0 : 0.0;
     const std::uint32_t first = nb_.start()[a];
-    const PairSums sums =
-        pairSums<K, Xsph>(Pp, A, nb_.entry().data() + first, nb_.start()[a + 1] - first,
-                          scratch[omp_get_thread_num()], pcA);
+    Scratch& w = scratch[omp_get_thread_num()];
+    const std::uint32_t* entries = nb_.entry().data() + first;
+    const std::uint32_t count = nb_.start()[a + 1] - first, self = static_cast<std::uint32_t>(a);
+    const std::size_t m = pc.periodic ? supportStream<true>(Pp, self, entries, count, w, pc)
+                                      : supportStream<false>(Pp, self, entries, count, w, pc);
+    const PairSums sums = pairSums<K, Xsph>(Pp, A, m, w, pcA);
     const double* acc = sums.acc;
     const double* xs = sums.xs;
     const double* grad = sums.grad;
