@@ -201,7 +201,7 @@ CK_ALWAYS_INLINE void carryContactFrame(const double n[3], const double nOld[3],
   const double phi = 0.25 * dt * dot3(omegaSum, mean);
   const double q[3] = {phi * mean[0], phi * mean[1], phi * mean[2]};
   const double q2 = dot3(q, q);
-  const bool spin = len2 > 0.0 && q2 > 0.0;
+  const bool spin = (len2 > 0.0) & (q2 > 0.0);
   const double f = 2.0 / (1.0 + q2);
   double qS[3], qX[3], qqS[3], qqX[3];
   cross3(q, S, qS);
@@ -217,7 +217,7 @@ CK_ALWAYS_INLINE void carryContactFrame(const double n[3], const double nOld[3],
   double kv[3];
   cross3(nOld, n, kv);
   const double cosine = dot3(nOld, n);
-  const bool turn = dot3(kv, kv) > 0.0 && cosine > -1.0;
+  const bool turn = (dot3(kv, kv) > 0.0) & (cosine > -1.0);
   const double g = 1.0 / (1.0 + cosine);
   double kS[3], kX[3];
   cross3(kv, S, kS);
@@ -251,9 +251,9 @@ inline Eigen::Vector3d rollingRate(const ContactState& c) {
 }
 
 // One contact: normal law + SSDEM tangential, rolling and twisting resistance, on plain
-// numbers and without branches on the contact's values (both ways computed, one kept), so
-// that a loop over a table of contacts runs several at once. The constants (fc) are the
-// run's; the branches on them are the same for every contact.
+// numbers and without branches (both ways computed, one kept; every division done whatever
+// the case, so that the compiler need not fear a trap in a lane that would not have run it),
+// so that a loop over a table of contacts runs several at once.
 template <class Normal> CK_ALWAYS_INLINE void
 ssdemContactLane(const Normal& law, const FrictionConstants& fc, ContactLane& c, double dt) {
   const double x = c.overlap, rr = c.reducedRadius;
@@ -266,19 +266,16 @@ ssdemContactLane(const Normal& law, const FrictionConstants& fc, ContactLane& c,
   const double cN = law.damping(x, rr, c.reducedMass);
   // F_N is along n: keep its signed magnitude (spring, dashpot, cohesion).
   double fNsigned = -law.elastic(x, rr) + cN * un;
-  if (fc.cohesion > 0.0) {
-    const double a = fc.beta * rr;
-    fNsigned += fc.cohesion * 4.0 * a * a;
-  }
+  const double a = fc.beta * rr;
+  fNsigned = fc.cohesion > 0.0 ? fNsigned + fc.cohesion * 4.0 * a * a : fNsigned;
   // No tension: a cohesionless contact's force is clipped at zero (see NormalLawKind), and
   // friction, rolling and twisting are limited by the compressive load alone, so a sliding
   // contact's tangential impulse is μ_s times its normal impulse.
-  if (fc.cohesion == 0.0)
-    fNsigned = std::min(fNsigned, 0.0);
+  fNsigned = fc.cohesion == 0.0 ? std::min(fNsigned, 0.0) : fNsigned;
   const double fNmag = std::max(-fNsigned, 0.0);
 
   // A fresh contact (no normal yet) has no history to carry.
-  const bool fresh = c.normal[0] == 0.0 && c.normal[1] == 0.0 && c.normal[2] == 0.0;
+  const bool fresh = (c.normal[0] == 0.0) & (c.normal[1] == 0.0) & (c.normal[2] == 0.0);
   double S[3], xiR[3];
   for (int k = 0; k < 3; ++k) {
     S[k] = c.spring[k];
@@ -299,55 +296,56 @@ ssdemContactLane(const Normal& law, const FrictionConstants& fc, ContactLane& c,
   const double fTmax = fc.muS * fNmag;
   const bool slip = dot3(fT, fT) > fTmax * fTmax;
   const double ut = std::sqrt(dot3(uT, uT));
-  const double slide = ut > 0.0 ? std::min(fTmax, cT * ut) / ut : 0.0;
+  const double slideAny = std::min(fTmax, cT * ut) / ut;
+  const double slide = ut > 0.0 ? slideAny : 0.0;
   for (int k = 0; k < 3; ++k) {
     S[k] = slip ? 0.0 : S[k];
     fT[k] = slip ? slide * uT[k] : fT[k];
   }
 
-  double mR[3] = {0.0, 0.0, 0.0}, mQ[3] = {0.0, 0.0, 0.0};
-  if (fc.muR > 0.0 || fc.muT > 0.0) {
-    const double br = fc.beta * rr;
-    const double kN = law.stiffness(x, rr);
-    const double twistRate = dot3(c.omegaRel, n);
-    // rollingRate above, component by component.
-    const double invN = std::isfinite(c.leverN) ? 1.0 / c.leverN : 0.0;
-    const double half = 0.5 * (invN - 1.0 / c.leverP);
-    double nxu[3], omegaR[3];
-    cross3(n, c.u, nxu);
-    for (int k = 0; k < 3; ++k)
-      omegaR[k] = (c.omegaRel[k] - twistRate * n[k]) + half * nxu[k];
-    if (fc.muR > 0.0) {
-      const double kR = kN * br * br, cR = cN * br * br, mRmax = fc.muR * br * fNmag;
-      for (int k = 0; k < 3; ++k) {
-        xiR[k] = xiR[k] + omegaR[k] * dt;
-        mR[k] = kR * xiR[k];
-      }
-      const double m2 = dot3(mR, mR);
-      // Slipping: the spring stays at the limit (not at its last length, which would keep
-      // more than the limit when the load drops and drive the grain once the rolling turns
-      // back; docs/physics.md §1.4).
-      const bool rollSlip = m2 > mRmax * mRmax;
-      const double scale = mRmax / std::sqrt(m2);
-      for (int k = 0; k < 3; ++k) {
-        const double limited = mR[k] * scale;
-        xiR[k] = rollSlip ? limited / kR : xiR[k];
-        mR[k] = rollSlip ? limited : mR[k] + cR * omegaR[k];
-      }
-    }
-    if (fc.muT > 0.0) {
-      const double kQ = 2.0 * kT * br * br, cQ = 2.0 * cT * br * br;
-      const double mQmax = fc.muT * br * fc.muS * fNmag;
-      c.twisting = c.twisting + twistRate * dt;
-      const double trial = kQ * c.twisting;
-      const bool twistSlip = std::abs(trial) > mQmax;
-      const double limit = std::copysign(mQmax, trial);
-      const double m = twistSlip ? limit : trial + cQ * twistRate;
-      c.twisting = twistSlip ? limit / kQ : c.twisting;
-      for (int k = 0; k < 3; ++k)
-        mQ[k] = m * n[k];
-    }
+  // Rolling and twisting (computed even when off, then dropped: no branch in the loop).
+  const bool rolling = fc.muR > 0.0, twisting = fc.muT > 0.0;
+  const double br = fc.beta * rr;
+  const double kN = law.stiffness(x, rr);
+  const double twistRate = dot3(c.omegaRel, n);
+  // rollingRate above, component by component.
+  const double invAny = 1.0 / c.leverN;
+  const double invN = std::isfinite(c.leverN) ? invAny : 0.0;
+  const double half = 0.5 * (invN - 1.0 / c.leverP);
+  double nxu[3], omegaR[3];
+  cross3(n, c.u, nxu);
+  for (int k = 0; k < 3; ++k)
+    omegaR[k] = (c.omegaRel[k] - twistRate * n[k]) + half * nxu[k];
+  const double kR = kN * br * br, cR = cN * br * br, mRmax = fc.muR * br * fNmag;
+  double mR[3], xiNew[3];
+  for (int k = 0; k < 3; ++k) {
+    xiNew[k] = xiR[k] + omegaR[k] * dt;
+    mR[k] = kR * xiNew[k];
   }
+  const double m2 = dot3(mR, mR);
+  // Slipping: the spring stays at the limit (not at its last length, which would keep
+  // more than the limit when the load drops and drive the grain once the rolling turns
+  // back; docs/physics.md §1.4).
+  const bool rollSlip = m2 > mRmax * mRmax;
+  const double scale = mRmax / std::sqrt(m2);
+  for (int k = 0; k < 3; ++k) {
+    const double limited = mR[k] * scale, back = limited / kR;
+    xiNew[k] = rollSlip ? back : xiNew[k];
+    mR[k] = rollSlip ? limited : mR[k] + cR * omegaR[k];
+    xiR[k] = rolling ? xiNew[k] : xiR[k];
+    mR[k] = rolling ? mR[k] : 0.0;
+  }
+  const double kQ = 2.0 * kT * br * br, cQ = 2.0 * cT * br * br;
+  const double mQmax = fc.muT * br * fc.muS * fNmag;
+  const double turned = c.twisting + twistRate * dt;
+  const double trial = kQ * turned;
+  const bool twistSlip = std::abs(trial) > mQmax;
+  const double limit = std::copysign(mQmax, trial), held = limit / kQ;
+  const double mQn = twistSlip ? limit : trial + cQ * twistRate;
+  c.twisting = twisting ? (twistSlip ? held : turned) : c.twisting;
+  double mQ[3];
+  for (int k = 0; k < 3; ++k)
+    mQ[k] = twisting ? mQn * n[k] : 0.0; // +0 when off, as the vector form had
   for (int k = 0; k < 3; ++k) {
     c.spring[k] = S[k];
     c.rolling[k] = xiR[k];
