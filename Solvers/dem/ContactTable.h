@@ -7,9 +7,11 @@
 // holds the contacts' histories and results as arrays of components. Each step writes a new
 // table from the pairs found touching, in the order of the pair list; each row reads its
 // history from its row of the previous table (`from`; the zero row past the end for a new
-// contact), so the contact law runs over contiguous arrays, several contacts at once (SIMD;
-// compiled for AVX-512 and for generic x86-64, sph/SimdClones.h). Every contact is evaluated
-// on its own: the results depend neither on its row nor on the number of threads.
+// contact), so the contact law runs over contiguous arrays. The loop is written for SIMD
+// (`omp simd`, a branch-free law, compiled for AVX-512 and generic x86-64 as in
+// sph/SimdClones.h), but GCC 12 keeps it scalar (-fopt-info-vec: "control flow in loop" for
+// x86-64, "no vectype" at the position loads for AVX-512). Every contact is evaluated on its
+// own: the results depend neither on its row nor on the number of threads.
 #pragma once
 
 #include "dem/ContactModels.h"

@@ -8,7 +8,7 @@
 //
 // Forces are computed in passes so that OpenMP never needs atomics: the pairs in contact are
 // found and written to a compact table (dem/ContactTable.h), the contact law runs over the
-// table's rows (several at once), then each particle sums its pairs in contact in index order
+// table's rows, then each particle sums its pairs in contact in index order
 // (reading only the contact flags of the others) and its walls. A step is one parallel region
 // (drift, contacts, law and gather separated by barriers), two when the list is rebuilt.
 // A new run first orders the particles along a Morton curve of their cells, so that
