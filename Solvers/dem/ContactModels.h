@@ -87,9 +87,10 @@ struct ContactResult {
 // Constants of the friction part, computed once per force evaluation.
 struct FrictionConstants {
   explicit FrictionConstants(const ContactParams& p)
-      : kT(p.tangentialStiffness()), dampingT(dashpotFactor(p.restitutionT)),
-        sqrtKT(std::sqrt(kT)) {}
+      : kT(p.tangentialStiffness()), dampingT(dashpotFactor(p.restitutionT)), sqrtKT(std::sqrt(kT)),
+        muS(p.muS), muR(p.muR), muT(p.muT), beta(p.beta), cohesion(p.cohesion) {}
   double kT, dampingT, sqrtKT;
+  double muS, muR, muT, beta, cohesion; // copies of ContactParams', for the contact loops
 };
 
 // The normal laws act without tension: a cohesionless contact's normal force is clipped at
@@ -155,44 +156,83 @@ struct Hertz {
   }
 };
 
-// Rotates history vectors with the contact frame (docs/physics.md §1.3 (a)-(b)); inline: it runs
-// for every contact at every step.
+// Plain-number helpers of the lane kernel below. Each keeps the operation order of Eigen's
+// fixed-size 3-vectors (a dot product is (a0 b0 + a1 b1) + a2 b2), so that the kernel gives
+// the same bits as the vector form it replaced.
 #if defined(__GNUC__)
-__attribute__((always_inline))
+#define CK_ALWAYS_INLINE __attribute__((always_inline)) inline
+#else
+#define CK_ALWAYS_INLINE inline
 #endif
-inline void
-carryContactFrame(ContactHistory& h, const Eigen::Vector3d& n, const Eigen::Vector3d& omegaSum,
-                  double dt) {
-  const Eigen::Vector3d nOld(h.normal[0], h.normal[1], h.normal[2]);
-  Eigen::Map<Eigen::Vector3d> S(h.spring), xi(h.rolling);
+CK_ALWAYS_INLINE double dot3(const double a[3], const double b[3]) {
+  return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2];
+}
+CK_ALWAYS_INLINE void cross3(const double a[3], const double b[3], double out[3]) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+// One contact as plain numbers (see ContactState, ContactHistory and ContactResult for the
+// meaning of each field): what ssdemContactLane reads and writes. Loops over a table of
+// contacts fill one per contact and run several contacts at once, one per SIMD lane.
+struct ContactLane {
+  double n[3], overlap, leverP, leverN, u[3], omegaRel[3], omegaSum[3], reducedMass, reducedRadius;
+  double spring[3], rolling[3], twisting, normal[3]; // the history, updated in place
+  double force[3], torqueP[3], torqueN[3];           // the result
+};
+
+// Rotates history vectors with the contact frame (docs/physics.md §1.3 (a)-(b)). Written
+// without branches (both ways computed, one kept) so that a loop over contacts vectorises;
+// the kept value is the one the branch would give, bit for bit.
+// n is the new normal, nOld the last one, S and xi the tangential spring and the rolling
+// displacement.
+CK_ALWAYS_INLINE void carryContactFrame(const double n[3], const double nOld[3],
+                                        const double omegaSum[3], double S[3], double xi[3],
+                                        double dt) {
   // (a) spin about the mean normal by φ = dt/2 (ω_p + ω_n)·n_mean. Cayley form with
   // q = (φ/2) a: exactly orthogonal, no trigonometry, angle error O(φ³) for the tiny
   // per-step angles of a resolved contact.
-  Eigen::Vector3d mean = nOld + n;
-  const double len2 = mean.squaredNorm();
-  if (len2 > 0.0) {
-    mean /= std::sqrt(len2);
-    const Eigen::Vector3d q = (0.25 * dt * omegaSum.dot(mean)) * mean;
-    const double q2 = q.squaredNorm();
-    if (q2 > 0.0) {
-      const double f = 2.0 / (1.0 + q2);
-      const Eigen::Vector3d qS = q.cross(S), qX = q.cross(xi);
-      S += f * (qS + q.cross(qS));
-      xi += f * (qX + q.cross(qX));
-    }
+  double mean[3] = {nOld[0] + n[0], nOld[1] + n[1], nOld[2] + n[2]};
+  const double len2 = dot3(mean, mean);
+  const double len = std::sqrt(len2);
+  for (int k = 0; k < 3; ++k)
+    mean[k] = mean[k] / len;
+  const double phi = 0.25 * dt * dot3(omegaSum, mean);
+  const double q[3] = {phi * mean[0], phi * mean[1], phi * mean[2]};
+  const double q2 = dot3(q, q);
+  const bool spin = (len2 > 0.0) & (q2 > 0.0);
+  const double f = 2.0 / (1.0 + q2);
+  double qS[3], qX[3], qqS[3], qqX[3];
+  cross3(q, S, qS);
+  cross3(q, xi, qX);
+  cross3(q, qS, qqS);
+  cross3(q, qX, qqX);
+  for (int k = 0; k < 3; ++k) {
+    S[k] = spin ? S[k] + f * (qS[k] + qqS[k]) : S[k];
+    xi[k] = spin ? xi[k] + f * (qX[k] + qqX[k]) : xi[k];
   }
   // (b) the rotation taking n_old to n (Rodrigues with k = n_old x n, c = n_old·n):
   // R v = c v + k x v + (k·v) k / (1 + c).
-  const Eigen::Vector3d k = nOld.cross(n);
-  const double c = nOld.dot(n);
-  if (k.squaredNorm() > 0.0 && c > -1.0) {
-    const double f = 1.0 / (1.0 + c);
-    S = c * S + k.cross(S) + (f * k.dot(S)) * k;
-    xi = c * xi + k.cross(xi) + (f * k.dot(xi)) * k;
+  double kv[3];
+  cross3(nOld, n, kv);
+  const double cosine = dot3(nOld, n);
+  const bool turn = (dot3(kv, kv) > 0.0) & (cosine > -1.0);
+  const double g = 1.0 / (1.0 + cosine);
+  double kS[3], kX[3];
+  cross3(kv, S, kS);
+  cross3(kv, xi, kX);
+  const double gS = g * dot3(kv, S), gX = g * dot3(kv, xi);
+  for (int k = 0; k < 3; ++k) {
+    S[k] = turn ? (cosine * S[k] + kS[k]) + gS * kv[k] : S[k];
+    xi[k] = turn ? (cosine * xi[k] + kX[k]) + gX * kv[k] : xi[k];
   }
   // Keep the histories in the tangent plane against round-off drift.
-  S -= S.dot(n) * n;
-  xi -= xi.dot(n) * n;
+  const double sn = dot3(S, n), xn = dot3(xi, n);
+  for (int k = 0; k < 3; ++k) {
+    S[k] = S[k] - sn * n[k];
+    xi[k] = xi[k] - xn * n[k];
+  }
 }
 
 // Objective rolling rate of Kuhn & Bagi (2004, Int. J. Solids Struct. 41:5793): the mean
@@ -210,90 +250,150 @@ inline Eigen::Vector3d rollingRate(const ContactState& c) {
   return c.omegaRel - c.omegaRel.dot(n) * n + 0.5 * (invN - 1.0 / c.leverP) * n.cross(c.u);
 }
 
-// One contact: normal law + SSDEM tangential, rolling and twisting resistance.
-template <class Normal>
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
-inline ContactResult
-ssdemContact(const Normal& law, const ContactParams& p, const FrictionConstants& fc,
-             const ContactState& c, ContactHistory& h, double dt) {
-  const double kT = law.tangentialStiffness(c.overlap, c.reducedRadius, fc);
-  ContactResult out;
-  const Eigen::Vector3d& n = c.n;
-  const double un = c.u.dot(n);
-  const Eigen::Vector3d uN = un * n;
-  const Eigen::Vector3d uT = c.u - uN;
-  const double cN = law.damping(c.overlap, c.reducedRadius, c.reducedMass);
+// One contact: normal law + SSDEM tangential, rolling and twisting resistance, on plain
+// numbers and without branches (both ways computed, one kept; every division done whatever
+// the case, so that the compiler need not fear a trap in a lane that would not have run it),
+// so that a loop over a table of contacts runs several at once.
+template <class Normal> CK_ALWAYS_INLINE void
+ssdemContactLane(const Normal& law, const FrictionConstants& fc, ContactLane& c, double dt) {
+  const double x = c.overlap, rr = c.reducedRadius;
+  const double kT = law.tangentialStiffness(x, rr, fc);
+  const double* n = c.n;
+  const double un = dot3(c.u, n);
+  double uT[3];
+  for (int k = 0; k < 3; ++k)
+    uT[k] = c.u[k] - un * n[k];
+  const double cN = law.damping(x, rr, c.reducedMass);
   // F_N is along n: keep its signed magnitude (spring, dashpot, cohesion).
-  double fNsigned = -law.elastic(c.overlap, c.reducedRadius) + cN * un;
-  if (p.cohesion > 0.0) {
-    const double a = p.beta * c.reducedRadius;
-    fNsigned += p.cohesion * 4.0 * a * a;
-  }
+  double fNsigned = -law.elastic(x, rr) + cN * un;
+  const double a = fc.beta * rr;
+  fNsigned = fc.cohesion > 0.0 ? fNsigned + fc.cohesion * 4.0 * a * a : fNsigned;
   // No tension: a cohesionless contact's force is clipped at zero (see NormalLawKind), and
   // friction, rolling and twisting are limited by the compressive load alone, so a sliding
   // contact's tangential impulse is μ_s times its normal impulse.
-  if (p.cohesion == 0.0)
-    fNsigned = std::min(fNsigned, 0.0);
-  const Eigen::Vector3d fN = fNsigned * n;
+  fNsigned = fc.cohesion == 0.0 ? std::min(fNsigned, 0.0) : fNsigned;
   const double fNmag = std::max(-fNsigned, 0.0);
 
-  if (!h.fresh())
-    carryContactFrame(h, n, c.omegaSum, dt);
-  Eigen::Map<Eigen::Vector3d> S(h.spring), xiR(h.rolling);
+  // A fresh contact (no normal yet) has no history to carry.
+  const bool fresh = (c.normal[0] == 0.0) & (c.normal[1] == 0.0) & (c.normal[2] == 0.0);
+  double S[3], xiR[3];
+  for (int k = 0; k < 3; ++k) {
+    S[k] = c.spring[k];
+    xiR[k] = c.rolling[k];
+  }
+  carryContactFrame(n, c.normal, c.omegaSum, S, xiR, dt);
+  for (int k = 0; k < 3; ++k) {
+    S[k] = fresh ? c.spring[k] : S[k];
+    xiR[k] = fresh ? c.rolling[k] : xiR[k];
+  }
   // Tangential spring and Coulomb slider; pkdgrav zeroes the spring when it slips.
-  const double cT =
-      fc.dampingT * law.tangentialRoot(c.overlap, c.reducedRadius, fc) * std::sqrt(c.reducedMass);
-  S += uT * dt;
-  Eigen::Vector3d fT = kT * S + cT * uT;
-  const double fTmax = p.muS * fNmag;
-  if (fT.squaredNorm() > fTmax * fTmax) {
-    S.setZero();
-    const double ut = uT.norm();
-    fT = (ut > 0.0 ? std::min(fTmax, cT * ut) / ut : 0.0) * uT;
+  const double cT = fc.dampingT * law.tangentialRoot(x, rr, fc) * std::sqrt(c.reducedMass);
+  double fT[3];
+  for (int k = 0; k < 3; ++k) {
+    S[k] = S[k] + uT[k] * dt;
+    fT[k] = kT * S[k] + cT * uT[k];
+  }
+  const double fTmax = fc.muS * fNmag;
+  const bool slip = dot3(fT, fT) > fTmax * fTmax;
+  const double ut = std::sqrt(dot3(uT, uT));
+  const double slideAny = std::min(fTmax, cT * ut) / ut;
+  const double slide = ut > 0.0 ? slideAny : 0.0;
+  for (int k = 0; k < 3; ++k) {
+    S[k] = slip ? 0.0 : S[k];
+    fT[k] = slip ? slide * uT[k] : fT[k];
   }
 
-  Eigen::Vector3d mR = Eigen::Vector3d::Zero(), mQ = Eigen::Vector3d::Zero();
-  if (p.muR > 0.0 || p.muT > 0.0) {
-    const double br = p.beta * c.reducedRadius;
-    const double kN = law.stiffness(c.overlap, c.reducedRadius);
-    const double twistRate = c.omegaRel.dot(n);
-    const Eigen::Vector3d omegaR = rollingRate(c);
-    if (p.muR > 0.0) {
-      const double kR = kN * br * br, cR = cN * br * br, mRmax = p.muR * br * fNmag;
-      xiR += omegaR * dt;
-      mR = kR * xiR;
-      const double m2 = mR.squaredNorm();
-      if (m2 > mRmax * mRmax) {
-        // Slipping: the spring stays at the limit (not at its last length, which would keep
-        // more than the limit when the load drops and drive the grain once the rolling turns
-        // back; docs/physics.md §1.4).
-        mR *= mRmax / std::sqrt(m2);
-        xiR = mR / kR;
-      } else {
-        mR += cR * omegaR;
-      }
-    }
-    if (p.muT > 0.0) {
-      const double kQ = 2.0 * kT * br * br, cQ = 2.0 * cT * br * br;
-      const double mQmax = p.muT * br * p.muS * fNmag;
-      h.twisting += twistRate * dt;
-      const double trial = kQ * h.twisting;
-      if (std::abs(trial) > mQmax) {
-        mQ = std::copysign(mQmax, trial) * n;
-        h.twisting = std::copysign(mQmax, trial) / kQ;
-      } else {
-        mQ = (trial + cQ * twistRate) * n;
-      }
-    }
-  }
+  // Rolling and twisting (computed even when off, then dropped: no branch in the loop).
+  const bool rolling = fc.muR > 0.0, twisting = fc.muT > 0.0;
+  const double br = fc.beta * rr;
+  const double kN = law.stiffness(x, rr);
+  const double twistRate = dot3(c.omegaRel, n);
+  // rollingRate above, component by component.
+  const double invAny = 1.0 / c.leverN;
+  const double invN = std::isfinite(c.leverN) ? invAny : 0.0;
+  const double half = 0.5 * (invN - 1.0 / c.leverP);
+  double nxu[3], omegaR[3];
+  cross3(n, c.u, nxu);
   for (int k = 0; k < 3; ++k)
-    h.normal[k] = n[k];
-  const Eigen::Vector3d nxT = n.cross(fT);
-  out.force = fN + fT;
-  out.torqueP = c.leverP * nxT + mR + mQ;
-  out.torqueN = (std::isfinite(c.leverN) ? c.leverN : 0.0) * nxT - mR - mQ;
+    omegaR[k] = (c.omegaRel[k] - twistRate * n[k]) + half * nxu[k];
+  const double kR = kN * br * br, cR = cN * br * br, mRmax = fc.muR * br * fNmag;
+  double mR[3], xiNew[3];
+  for (int k = 0; k < 3; ++k) {
+    xiNew[k] = xiR[k] + omegaR[k] * dt;
+    mR[k] = kR * xiNew[k];
+  }
+  const double m2 = dot3(mR, mR);
+  // Slipping: the spring stays at the limit (not at its last length, which would keep
+  // more than the limit when the load drops and drive the grain once the rolling turns
+  // back; docs/physics.md §1.4).
+  const bool rollSlip = m2 > mRmax * mRmax;
+  const double scale = mRmax / std::sqrt(m2);
+  for (int k = 0; k < 3; ++k) {
+    const double limited = mR[k] * scale, back = limited / kR;
+    xiNew[k] = rollSlip ? back : xiNew[k];
+    mR[k] = rollSlip ? limited : mR[k] + cR * omegaR[k];
+    xiR[k] = rolling ? xiNew[k] : xiR[k];
+    mR[k] = rolling ? mR[k] : 0.0;
+  }
+  const double kQ = 2.0 * kT * br * br, cQ = 2.0 * cT * br * br;
+  const double mQmax = fc.muT * br * fc.muS * fNmag;
+  const double turned = c.twisting + twistRate * dt;
+  const double trial = kQ * turned;
+  const bool twistSlip = std::abs(trial) > mQmax;
+  const double limit = std::copysign(mQmax, trial), held = limit / kQ;
+  const double mQn = twistSlip ? limit : trial + cQ * twistRate;
+  c.twisting = twisting ? (twistSlip ? held : turned) : c.twisting;
+  double mQ[3];
+  for (int k = 0; k < 3; ++k)
+    mQ[k] = twisting ? mQn * n[k] : 0.0; // +0 when off, as the vector form had
+  for (int k = 0; k < 3; ++k) {
+    c.spring[k] = S[k];
+    c.rolling[k] = xiR[k];
+    c.normal[k] = n[k];
+  }
+  double nxT[3];
+  cross3(n, fT, nxT);
+  const double leverN = std::isfinite(c.leverN) ? c.leverN : 0.0;
+  for (int k = 0; k < 3; ++k) {
+    c.force[k] = fNsigned * n[k] + fT[k];
+    c.torqueP[k] = (c.leverP * nxT[k] + mR[k]) + mQ[k];
+    c.torqueN[k] = (leverN * nxT[k] - mR[k]) - mQ[k];
+  }
+}
+
+// The same on the vector types: one contact seen from p (fc must be FrictionConstants(p)).
+template <class Normal> inline ContactResult ssdemContact(const Normal& law, const ContactParams& p,
+                                                          const FrictionConstants& fc,
+                                                          const ContactState& c, ContactHistory& h,
+                                                          double dt) {
+  (void)p; // its coefficients are in fc
+  ContactLane lane;
+  for (int k = 0; k < 3; ++k) {
+    lane.n[k] = c.n[k];
+    lane.u[k] = c.u[k];
+    lane.omegaRel[k] = c.omegaRel[k];
+    lane.omegaSum[k] = c.omegaSum[k];
+    lane.spring[k] = h.spring[k];
+    lane.rolling[k] = h.rolling[k];
+    lane.normal[k] = h.normal[k];
+  }
+  lane.overlap = c.overlap;
+  lane.leverP = c.leverP;
+  lane.leverN = c.leverN;
+  lane.reducedMass = c.reducedMass;
+  lane.reducedRadius = c.reducedRadius;
+  lane.twisting = h.twisting;
+  ssdemContactLane(law, fc, lane, dt);
+  ContactResult out;
+  for (int k = 0; k < 3; ++k) {
+    h.spring[k] = lane.spring[k];
+    h.rolling[k] = lane.rolling[k];
+    h.normal[k] = lane.normal[k];
+    out.force[k] = lane.force[k];
+    out.torqueP[k] = lane.torqueP[k];
+    out.torqueN[k] = lane.torqueN[k];
+  }
+  h.twisting = lane.twisting;
   return out;
 }
 

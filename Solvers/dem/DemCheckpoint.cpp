@@ -119,17 +119,27 @@ void DemSolver::writeCheckpoint(std::ostream& out) const {
   w.vec(alpha_);
   std::vector<std::uint32_t> ci, cj;
   std::vector<ContactHistory> ch;
+  const ContactTable& table = tables_[current_];
   for (std::size_t k = 0; k < pairs_.size(); ++k)
     if (pairs_.active[k]) {
       ci.push_back(pairs_.first[k]);
       cj.push_back(pairs_.second[k]);
-      ch.push_back(pairs_.history[k]);
+      ch.push_back(table.historyAt(pairs_.row[k]));
     }
   w.vec(ci);
   w.vec(cj);
   w.vec(ch);
-  w.vec(wallHistory_);
-  w.vec(wallActive_);
+  // The wall histories as one entry per particle and wall (the file's layout).
+  const std::size_t walls = params_.walls.size();
+  std::vector<ContactHistory> wh(n_ * walls);
+  std::vector<char> wa(n_ * walls, 0);
+  for (std::size_t c = 0; c < wallContacts_.size(); ++c) {
+    const std::size_t at = wallContacts_.particle[c] * walls + wallContacts_.wall[c];
+    wh[at] = wallContacts_.history[c];
+    wa[at] = wallContacts_.active[c];
+  }
+  w.vec(wh);
+  w.vec(wa);
   w.pod<std::uint64_t>(overlapWarningSteps_);
   out.write(kMagic, sizeof(kMagic)); // trailer: a complete file ends with the magic again
   if (!out)
@@ -219,14 +229,25 @@ DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t available) {
   solver.step_ = step;
   solver.acc_ = std::move(acc);
   solver.alpha_ = std::move(alpha);
-  solver.wallHistory_ = std::move(wh);
-  solver.wallActive_ = std::move(wa);
   solver.overlapWarningSteps_ = warnings;
-  // Merge the saved histories into the fresh list (every saved contact must be in it).
+  // The wall histories of the walls each particle can reach (a wall it touches is one).
+  WallContacts& wc = solver.wallContacts_;
+  for (std::size_t c = 0; c < wc.size(); ++c) {
+    const std::size_t at = wc.particle[c] * walls + wc.wall[c];
+    wc.history[c] = wh[at];
+    wc.active[c] = wa[at];
+  }
+  // The saved contacts become the table of the last evaluation, merged into the fresh list
+  // (every saved contact must be in it).
+  ContactTable& table = solver.tables_[solver.current_];
+  table.resize(ci.size());
   const std::size_t found = forCommonPairs(ci, cj, solver.pairs_.first, solver.pairs_.second,
                                            [&](std::size_t a, std::size_t b) {
-                                             solver.pairs_.history[b] = ch[a];
+                                             table.first[a] = ci[a];
+                                             table.second[a] = cj[a];
+                                             table.setHistory(a, ch[a]);
                                              solver.pairs_.active[b] = 1;
+                                             solver.pairs_.row[b] = static_cast<std::uint32_t>(a);
                                            });
   if (found != ci.size())
     throw InputError("checkpoint corrupt: a saved contact is not between neighbouring particles");

@@ -9,6 +9,10 @@
 #include <limits>
 #include <sstream>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace craterkit {
 
 namespace {
@@ -19,10 +23,20 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 inline Vec at(const std::vector<double>& a, std::size_t i) {
   return Vec(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
 }
-inline void put(std::vector<double>& a, std::size_t i, const Vec& v) {
-  a[3 * i] = v[0];
-  a[3 * i + 1] = v[1];
-  a[3 * i + 2] = v[2];
+
+int threadCount() {
+#ifdef _OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+int threadNumber() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
 }
 
 std::string describe(const ParticleSet& s, std::size_t i) {
@@ -135,8 +149,9 @@ void DemSolver::initialise(bool computeInitialForces) {
   alpha_.assign(3 * n_, 0.0);
   vPred_ = s.velocity;
   wPred_ = s.angularVelocity;
-  wallHistory_.assign(n_ * params_.walls.size(), ContactHistory{});
-  wallActive_.assign(n_ * params_.walls.size(), 0);
+  tables_[0].resize(0);
+  tables_[1].resize(0);
+  current_ = 0;
   dampingFactorN_ = clippedDampingFactor(params_.contact.normalModel == "Hertz"
                                              ? NormalLawKind::Hertz
                                              : NormalLawKind::LinearSpringDashpot,
@@ -263,99 +278,139 @@ void DemSolver::buildNeighbourList() {
       if (near)
         wallNear_[i] |= std::uint64_t(1) << w;
     }
+  wallContacts_.build(wallNear_);
   refPos_ = state_.position;
   ++builds_;
 }
 
 // ---------------------------------------------------------------------------------------------
 void DemSolver::computeForces(double kick) {
+#pragma omp parallel if (n_ >= kDemParallelMin)
+  forcePhases(kick);
+}
+
+void DemSolver::forcePhases(double kick) {
   const ContactParams& c = params_.contact;
   if (c.normalModel == "Hertz") {
     const double E = c.youngsModulus / (1.0 - c.poissonRatio * c.poissonRatio);
-    computeForcesWith(Hertz{0.5 * E, dampingFactorN_, c.poissonRatio},
-                      Hertz{E, dampingFactorN_, c.poissonRatio}, kick);
+    forcePhasesWith(Hertz{0.5 * E, dampingFactorN_, c.poissonRatio},
+                    Hertz{E, dampingFactorN_, c.poissonRatio}, kick);
   } else {
     const LinearSpringDashpot law{c.kN, dampingFactorN_};
-    computeForcesWith(law, law, kick);
+    forcePhasesWith(law, law, kick);
   }
 }
 
+// The pairs in contact now, in the order of the list, become the rows of the next table:
+// each thread tests one contiguous block of pairs (a static schedule hands them out in the
+// order of the thread numbers), then writes its rows after those of the threads before it.
+void DemSolver::collectContacts() {
+  const int threads = threadCount(), me = threadNumber();
+#pragma omp single
+  {
+    touching_.resize(static_cast<std::size_t>(threads));
+    touchingStart_.assign(static_cast<std::size_t>(threads) + 1, 0);
+    worstOverlap_ = 0.0;
+  }
+  const ContactTable& before = tables_[current_];
+  ContactTable& now = tables_[1 - current_];
+  const double* x = state_.position.data();
+  const double* r = state_.radius.data();
+  const std::uint32_t* first = pairs_.first.data();
+  const std::uint32_t* second = pairs_.second.data();
+  char* active = pairs_.active.data();
+  std::vector<std::uint32_t>& mine = touching_[static_cast<std::size_t>(me)];
+  mine.clear();
+  const std::size_t pairs = pairs_.size();
+#pragma omp for schedule(static) nowait
+  for (std::size_t k = 0; k < pairs; ++k) {
+    const std::size_t i = first[k], j = second[k];
+    const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1],
+                 d2 = x[3 * j + 2] - x[3 * i + 2];
+    const double dd = (d0 * d0 + d1 * d1) + d2 * d2, sum = r[i] + r[j];
+    if (!(dd >= sum * sum || dd == 0.0))
+      mine.push_back(static_cast<std::uint32_t>(k));
+    else if (active[k]) // separated: its history is not carried
+      active[k] = 0;
+  }
+  touchingStart_[static_cast<std::size_t>(me) + 1] = mine.size();
+#pragma omp barrier
+#pragma omp single
+  {
+    for (std::size_t t = 0; t < static_cast<std::size_t>(threads); ++t)
+      touchingStart_[t + 1] += touchingStart_[t];
+    now.resize(touchingStart_.back());
+  }
+  std::uint32_t* row = pairs_.row.data();
+  std::size_t c = touchingStart_[static_cast<std::size_t>(me)];
+  for (const std::uint32_t k : mine) {
+    now.first[c] = first[k];
+    now.second[c] = second[k];
+    now.from[c] = active[k] ? row[k] : static_cast<std::uint32_t>(before.rows);
+    active[k] = 1;
+    row[k] = static_cast<std::uint32_t>(c++);
+  }
+#pragma omp barrier
+}
+
 // Forces and torques at the current positions; with kick > 0 the closing half-kick of the
-// step (v += kick a) is applied in the same pass, while the accelerations are in registers.
+// step (v += kick a) is applied in the gather, while the accelerations are in registers.
 template <class Law>
-void DemSolver::computeForcesWith(const Law& pairLaw, const Law& wallLaw, double kick) {
+void DemSolver::forcePhasesWith(const Law& pairLaw, const Law& wallLaw, double kick) {
+  collectContacts();
+  const FrictionConstants fc(params_.contact);
+  const std::size_t threads = static_cast<std::size_t>(threadCount());
+  const std::size_t me = static_cast<std::size_t>(threadNumber());
+  const ContactInputs in{state_.position.data(), state_.radius.data(), state_.mass.data(),
+                         vPred_.data(), wPred_.data()};
+  ContactTable& now = tables_[1 - current_];
+  const std::size_t rows = now.rows;
+  const double worst = evaluateContacts(pairLaw, fc, params_.dt, in, tables_[current_], now,
+                                        rows * me / threads, rows * (me + 1) / threads);
+#pragma omp barrier
+  gatherForces(wallLaw, fc, kick, worst);
+}
+
+// Each particle sums its pairs in contact in index order, then its walls in wall order.
+template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const FrictionConstants& fc,
+                                                  double kick, double worst) {
   const ContactParams& cp = params_.contact;
-  const FrictionConstants fc(cp);
   const double dt = params_.dt;
   const ParticleSet& s = state_;
   const double* x = s.position.data();
   const double* r = s.radius.data();
   const double* m = s.mass.data();
-  const std::size_t pairs = pairs_.size();
-  double worst = 0.0;
-
-#pragma omp parallel for schedule(dynamic, 4096) reduction(max : worst) if (n_ >= kDemParallelMin)
-  for (std::size_t k = 0; k < pairs; ++k) {
-    const std::size_t i = pairs_.first[k], j = pairs_.second[k];
-    const Vec rho(x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]);
-    const double d2 = rho.squaredNorm(), sum = r[i] + r[j];
-    if (d2 >= sum * sum || d2 == 0.0) {
-      if (pairs_.active[k]) { // separated: the gather skips the slot from now on
-        pairs_.active[k] = 0;
-        pairs_.history[k].clear();
-      }
-      continue;
-    }
-    const double d = std::sqrt(d2);
-    ContactState st;
-    st.n = rho / d;
-    st.overlap = sum - d;
-    st.leverP = (r[i] * r[i] - r[j] * r[j] + d2) / (2.0 * d);
-    st.leverN = d - st.leverP;
-    const Vec wi = at(wPred_, i), wj = at(wPred_, j);
-    // Surface velocities: p's contact point is at +l_p n from its centre, n's at -l_n n.
-    st.u = at(vPred_, j) - at(vPred_, i) + st.leverN * st.n.cross(wj) + st.leverP * st.n.cross(wi);
-    st.omegaRel = wj - wi;
-    st.omegaSum = wi + wj;
-    st.reducedMass = m[i] * m[j] / (m[i] + m[j]);
-    st.reducedRadius = r[i] * r[j] / sum;
-    const ContactResult res = ssdemContact(pairLaw, cp, fc, st, pairs_.history[k], dt);
-    put(pairs_.force, k, res.force);
-    put(pairs_.torqueFirst, k, res.torqueP);
-    put(pairs_.torqueSecond, k, res.torqueN);
-    pairs_.active[k] = 1;
-    worst = std::max(worst, st.overlap / std::min(r[i], r[j]));
-  }
-
-  const std::size_t walls = params_.walls.size();
-#pragma omp parallel for schedule(dynamic, 4096) reduction(max : worst) if (n_ >= kDemParallelMin)
+  const double* res = tables_[1 - current_].result.data();
+  constexpr std::size_t R = ContactTable::kResultWords;
+  const char* active = pairs_.active.data();
+  const std::uint32_t* row = pairs_.row.data();
+  WallContacts& wc = wallContacts_;
+#pragma omp for schedule(dynamic, 4096) nowait
   for (std::size_t i = 0; i < n_; ++i) {
     Vec f = Vec::Zero(), t = Vec::Zero();
-    // Only the pairs in contact hold this step's force: most listed pairs are not touching
-    // (a bed at rest has a few per cent of them in contact), and reading the flag alone
-    // keeps their slots out of the cache. Skipping a pair is adding zero, so the sums are
-    // the same as over every pair, in the same order.
-    const char* active = pairs_.active.data();
+    // Only the pairs in contact have a row: most listed pairs are not touching, and reading
+    // the flag alone keeps the others out of the cache. Skipping a pair is adding zero.
     for (std::size_t k = pairs_.firstStart[i]; k < pairs_.firstStart[i + 1]; ++k)
       if (active[k]) {
-        f += at(pairs_.force, k);
-        t += at(pairs_.torqueFirst, k);
+        const double* c = &res[R * row[k]];
+        f += Vec(c[0], c[1], c[2]);
+        t += Vec(c[3], c[4], c[5]);
       }
     for (std::size_t q = pairs_.secondStart[i]; q < pairs_.secondStart[i + 1]; ++q) {
       const std::size_t k = pairs_.secondPair[q];
       if (active[k]) {
-        f -= at(pairs_.force, k);
-        t += at(pairs_.torqueSecond, k);
+        const double* c = &res[R * row[k]];
+        f -= Vec(c[0], c[1], c[2]);
+        t += Vec(c[6], c[7], c[8]);
       }
     }
-    for (std::uint64_t near = wallNear_[i]; near != 0; near &= near - 1) {
-      const std::size_t w = static_cast<std::size_t>(__builtin_ctzll(near));
+    for (std::size_t e = wc.start[i]; e < wc.start[i + 1]; ++e) {
       double nv[3], lever;
-      const double overlap = params_.walls[w].overlap(&x[3 * i], r[i], nv, lever);
-      ContactHistory& h = wallHistory_[i * walls + w];
+      const double overlap = params_.walls[wc.wall[e]].overlap(&x[3 * i], r[i], nv, lever);
+      ContactHistory& h = wc.history[e];
       if (!(overlap > 0.0)) {
-        if (wallActive_[i * walls + w]) {
-          wallActive_[i * walls + w] = 0;
+        if (wc.active[e]) {
+          wc.active[e] = 0;
           h.clear();
         }
         continue;
@@ -371,10 +426,10 @@ void DemSolver::computeForcesWith(const Law& pairLaw, const Law& wallLaw, double
       st.omegaSum = wi;
       st.reducedMass = m[i];
       st.reducedRadius = r[i];
-      const ContactResult res = ssdemContact(wallLaw, cp, fc, st, h, dt);
-      f += res.force;
-      t += res.torqueP;
-      wallActive_[i * walls + w] = 1;
+      const ContactResult out = ssdemContact(wallLaw, cp, fc, st, h, dt);
+      f += out.force;
+      t += out.torqueP;
+      wc.active[e] = 1;
       worst = std::max(worst, overlap / r[i]);
     }
     double g[3];
@@ -391,7 +446,11 @@ void DemSolver::computeForcesWith(const Law& pairLaw, const Law& wallLaw, double
       }
     }
   }
-  worstOverlap_ = worst;
+#pragma omp critical(ck_dem_worst)
+  worstOverlap_ = std::max(worstOverlap_, worst);
+#pragma omp barrier
+#pragma omp single
+  current_ = 1 - current_;
 }
 
 template <class Law>
@@ -407,33 +466,38 @@ double DemSolver::elasticEnergyWith(const Law& pairLaw, const Law& wallLaw) cons
            0.5 * law.stiffness(overlap, rbar) * br * br * xi.squaredNorm() +
            0.5 * 2.0 * kT * br * br * h.twisting * h.twisting;
   };
+  const ContactTable& table = tables_[current_];
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const std::size_t i = pairs_.first[k], j = pairs_.second[k];
     const double d = (at(s.position, j) - at(s.position, i)).norm();
     const double overlap = s.radius[i] + s.radius[j] - d;
     if (overlap > 0.0)
-      e += springs(pairs_.history[k], overlap,
+      e += springs(pairs_.active[k] ? table.historyAt(pairs_.row[k]) : ContactHistory{}, overlap,
                    s.radius[i] * s.radius[j] / (s.radius[i] + s.radius[j]), pairLaw);
   }
-  const std::size_t walls = params_.walls.size();
-  for (std::size_t i = 0; i < n_; ++i)
-    for (std::size_t w = 0; w < walls; ++w) {
-      double nv[3], lever;
-      const double overlap = params_.walls[w].overlap(&s.position[3 * i], s.radius[i], nv, lever);
-      if (overlap > 0.0)
-        e += springs(wallHistory_[i * walls + w], overlap, s.radius[i], wallLaw);
-    }
+  // Every wall a particle touches is among its entries (they are refreshed with the list).
+  const WallContacts& wc = wallContacts_;
+  for (std::size_t c = 0; c < wc.size(); ++c) {
+    const std::size_t i = wc.particle[c];
+    double nv[3], lever;
+    const double overlap =
+        params_.walls[wc.wall[c]].overlap(&s.position[3 * i], s.radius[i], nv, lever);
+    if (overlap > 0.0)
+      e += springs(wc.history[c], overlap, s.radius[i], wallLaw);
+  }
   return e;
 }
 
 // ---------------------------------------------------------------------------------------------
-void DemSolver::step() {
+// The opening half-kick and the drift, on every thread of a parallel region; moved_ gets the
+// largest squared displacement since the last build.
+void DemSolver::drift() {
   const double dt = params_.dt, h = 0.5 * dt;
-  std::vector<double>& x = state_.position;
-  std::vector<double>& v = state_.velocity;
-  std::vector<double>& w = state_.angularVelocity;
+  double* x = state_.position.data();
+  double* v = state_.velocity.data();
+  double* w = state_.angularVelocity.data();
   double moved = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : moved) if (n_ >= kDemParallelMin)
+#pragma omp for schedule(static) nowait
   for (std::size_t i = 0; i < n_; ++i) {
     double d2 = 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -448,8 +512,27 @@ void DemSolver::step() {
     }
     moved = std::max(moved, d2);
   }
-  if (!std::isfinite(moved) || std::sqrt(moved) > 0.5 * skin_) {
+#pragma omp critical(ck_dem_moved)
+  moved_ = std::max(moved_, moved);
+#pragma omp barrier
+}
+
+void DemSolver::step() {
+  const double dt = params_.dt, h = 0.5 * dt;
+  moved_ = 0.0;
+  // The list holds while no particle has moved more than half the skin since its build.
+  const auto listHolds = [this] {
+    return std::isfinite(moved_) && std::sqrt(moved_) <= 0.5 * skin_;
+  };
+#pragma omp parallel if (n_ >= kDemParallelMin)
+  {
+    drift();
+    if (listHolds()) // the same answer on every thread: moved_ is complete after drift()
+      forcePhases(h);
+  }
+  if (!listHolds()) {
     // A non-finite position would poison the cell list: report it here.
+    const std::vector<double>& x = state_.position;
     for (std::size_t i = 0; i < n_; ++i)
       for (int k = 0; k < 3; ++k)
         if (!std::isfinite(x[3 * i + k])) {
@@ -459,8 +542,8 @@ void DemSolver::step() {
           throw std::runtime_error(msg.str());
         }
     buildNeighbourList();
+    computeForces(h);
   }
-  computeForces(h);
   time_ += dt;
   ++step_;
   if (worstOverlap_ > params_.overlapWarning) {
@@ -478,7 +561,7 @@ void DemSolver::step() {
     std::size_t culprit = 0;
     double fastest = -1.0;
     for (std::size_t i = 0; i < n_; ++i) {
-      const double sp = at(v, i).norm();
+      const double sp = at(state_.velocity, i).norm();
       if (!(sp <= fastest)) {
         fastest = sp;
         culprit = i;
@@ -524,7 +607,6 @@ std::size_t DemSolver::removeParticles(const std::vector<char>& remove) {
     return 0;
   if (kept == 0)
     throw InputError("removeParticles: cannot remove every particle");
-  const std::size_t walls = params_.walls.size();
   auto compact = [&](auto& v, std::size_t width) {
     std::size_t o = 0;
     for (std::size_t i = 0; i < n_; ++i)
@@ -542,10 +624,11 @@ std::size_t DemSolver::removeParticles(const std::vector<char>& remove) {
   compact(alpha_, 3);
   compact(vPred_, 3);
   compact(wPred_, 3);
-  compact(wallHistory_, walls);
-  compact(wallActive_, walls);
-  // Renumber the pairs; the map is increasing, so the list stays sorted.
-  pairs_.removeParticles(remove, newIndex);
+  // Renumber the contacts and pairs; the map is increasing, so the lists stay sorted.
+  std::vector<std::uint32_t> newRow;
+  tables_[current_].removeParticles(remove, newIndex, newRow);
+  pairs_.removeParticles(remove, newIndex, newRow);
+  wallContacts_.removeParticles(remove, newIndex);
   const std::size_t removed = n_ - kept;
   n_ = kept;
   rmax_ = *std::max_element(s.radius.begin(), s.radius.end());
@@ -580,7 +663,7 @@ DemDiagnostics DemSolver::diagnostics() const {
   d.maxOverlap = worstOverlap_;
   for (char a : pairs_.active)
     d.contacts += a != 0;
-  for (char a : wallActive_)
+  for (char a : wallContacts_.active)
     d.wallContacts += a != 0;
   return d;
 }

@@ -6,9 +6,11 @@
 // rebuilt only when a particle has moved more than half the skin; contact histories are
 // carried across rebuilds by merging the sorted pair lists.
 //
-// Forces are computed in two passes so that OpenMP never needs atomics: each pair in contact
-// writes its force and torques to its own slot, then each particle sums its pairs in contact
-// in index order (reading only the contact flags of the others).
+// Forces are computed in passes so that OpenMP never needs atomics: the pairs in contact are
+// found and written to a compact table (dem/ContactTable.h), the contact law runs over the
+// table's rows, then each particle sums its pairs in contact in index order
+// (reading only the contact flags of the others) and its walls. A step is one parallel region
+// (drift, contacts, law and gather separated by barriers), two when the list is rebuilt.
 // A new run first orders the particles along a Morton curve of their cells, so that
 // neighbours sit close in memory (the output keeps each particle's Id, not its input
 // position). The result is bit-identical for any thread count, and a run resumed from a checkpoint
@@ -20,6 +22,7 @@
 #include "common/ParticleSet.h"
 #include "common/Progress.h"
 #include "dem/ContactModels.h"
+#include "dem/ContactTable.h"
 #include "dem/PairList.h"
 #include "dem/Walls.h"
 
@@ -108,8 +111,14 @@ private:
   void checkInput() const;
   void sortSpatially();
   void buildNeighbourList();
+  // computeForces opens a parallel region; the others run on every thread of one.
   void computeForces(double kick);
-  template <class Law> void computeForcesWith(const Law& pairLaw, const Law& wallLaw, double kick);
+  void drift();
+  void forcePhases(double kick);
+  void collectContacts();
+  template <class Law> void forcePhasesWith(const Law& pairLaw, const Law& wallLaw, double kick);
+  template <class Law>
+  void gatherForces(const Law& wallLaw, const FrictionConstants& fc, double kick, double worst);
   template <class Law> double elasticEnergyWith(const Law& pairLaw, const Law& wallLaw) const;
   void warn(const std::string& message);
 
@@ -122,10 +131,15 @@ private:
   double dampingFactorN_ = 0.0; // of the clipped normal law (clippedDampingFactor)
   std::vector<double> inertia_, acc_, alpha_, vPred_, wPred_, refPos_;
 
-  PairList pairs_;                          // half Verlet list with per-pair history and outputs
-  std::vector<ContactHistory> wallHistory_; // n_ x walls
-  std::vector<std::uint64_t> wallNear_;     // per particle: walls within r + skin at the last build
-  std::vector<char> wallActive_;
+  PairList pairs_;         // half Verlet list: particles, contact flags, table rows
+  ContactTable tables_[2]; // the contacts of the last force evaluation, and the next
+  int current_ = 0;        // tables_[current_] is the last evaluation's
+  WallContacts wallContacts_;
+  std::vector<std::uint64_t> wallNear_; // per particle: walls within r + skin at the last build
+  // Per thread: the pairs it found in contact; where each thread's rows start.
+  std::vector<std::vector<std::uint32_t>> touching_;
+  std::vector<std::size_t> touchingStart_;
+  double moved_ = 0.0; // largest squared displacement since the last build
 
   double worstOverlap_ = 0.0;
   std::size_t worstParticle_ = 0;

@@ -3,6 +3,8 @@
 #include "common/CellList.h"
 
 #include <algorithm>
+#include <limits>
+#include <stdexcept>
 
 namespace craterkit {
 
@@ -63,6 +65,8 @@ void PairList::build(const double* x, const double* r, std::size_t n, double rma
   for (std::size_t i = 0; i < n; ++i)
     start[i + 1] = start[i] + count[i + 1];
   const std::size_t pairs = start[n];
+  if (pairs > std::numeric_limits<std::uint32_t>::max()) // secondPair and the table rows
+    throw std::runtime_error("the DEM neighbour list has more than 2^32 - 1 pairs");
   // The new list goes into the spare buffers of the last build, which keep their memory:
   // fresh allocations of this size would cost a page fault per 4 kB at every rebuild.
   std::vector<std::uint32_t>&newI = spareFirst_, &newJ = spareSecond_;
@@ -81,35 +85,28 @@ void PairList::build(const double* x, const double* r, std::size_t n, double rma
                 static_cast<std::uint32_t>(i));
     }
   }
-  // Carry the histories of pairs in contact that stay in the list (both lists sorted by
-  // (i, j)); every other slot starts empty. Each new slot is written once.
-  std::vector<ContactHistory>& newHistory = spareHistory_;
+  // Carry the contact flags and table rows of pairs that stay in the list (both lists sorted
+  // by (i, j)): the histories stay in the table. Every other slot starts apart. Each new slot
+  // is written once.
   std::vector<char>& newActive = spareActive_;
-  newHistory.resize(pairs);
+  std::vector<std::uint32_t>& newRow = spareRow_;
   newActive.resize(pairs);
+  newRow.resize(pairs);
   std::size_t b = 0;
   forCommonPairs(first, second, newI, newJ, [&](std::size_t a, std::size_t same) {
-    for (; b < same; ++b) {
-      newHistory[b].clear();
+    for (; b < same; ++b)
       newActive[b] = 0;
-    }
-    newHistory[b] = history[a];
     newActive[b] = active[a];
+    newRow[b] = row[a];
     ++b;
   });
-  for (; b < pairs; ++b) {
-    newHistory[b].clear();
+  for (; b < pairs; ++b)
     newActive[b] = 0;
-  }
   first.swap(newI);
   second.swap(newJ);
-  history.swap(newHistory);
   active.swap(newActive);
+  row.swap(newRow);
   firstStart.swap(start);
-  // Written by the force pass for the pairs in contact; read only for those.
-  force.resize(3 * pairs);
-  torqueFirst.resize(3 * pairs);
-  torqueSecond.resize(3 * pairs);
   // Pairs in which each particle is the second member, in increasing order of the first.
   secondStart.assign(n + 1, 0);
   for (std::size_t k = 0; k < pairs; ++k)
@@ -119,25 +116,26 @@ void PairList::build(const double* x, const double* r, std::size_t n, double rma
   secondPair.resize(pairs);
   std::vector<std::size_t> fill(secondStart.begin(), secondStart.end() - 1);
   for (std::size_t k = 0; k < pairs; ++k)
-    secondPair[fill[second[k]]++] = k;
+    secondPair[fill[second[k]]++] = static_cast<std::uint32_t>(k);
 }
 
 void PairList::removeParticles(const std::vector<char>& remove,
-                               const std::vector<std::uint32_t>& newIndex) {
+                               const std::vector<std::uint32_t>& newIndex,
+                               const std::vector<std::uint32_t>& newRow) {
   std::size_t o = 0;
   for (std::size_t k = 0; k < first.size(); ++k) {
     if (remove[first[k]] || remove[second[k]])
       continue;
     first[o] = newIndex[first[k]];
     second[o] = newIndex[second[k]];
-    history[o] = history[k];
     active[o] = active[k];
+    row[o] = active[k] ? newRow[row[k]] : 0;
     ++o;
   }
   first.resize(o);
   second.resize(o);
-  history.resize(o);
   active.resize(o);
+  row.resize(o);
 }
 
 } // namespace craterkit

@@ -1,15 +1,16 @@
-// The DEM's half Verlet list and its contact-history slots (pkdgrav SSDEM; Schwartz,
-// Richardson & Michel 2012, §2.1: contacts are found among neighbours within a skin).
+// The DEM's half Verlet list (pkdgrav SSDEM; Schwartz, Richardson & Michel 2012, §2.1:
+// contacts are found among neighbours within a skin).
 //
-// Pairs i < j within r_i + r_j + skin, found with a cell list, sorted by (i, j). Each pair
-// owns a slot: its contact history (carried across rebuilds by merging the old and new
-// sorted lists, so a rebuild never resets a spring) and its force and torques of the step.
-// Each particle finds its pairs through firstStart (pairs where it is i, in order of j) and
-// secondStart/secondPair (pairs where it is j, in order of i), so that the force gather sums
-// every particle's pairs in index order with no atomics: bit-identical for any thread count.
+// Pairs i < j within r_i + r_j + skin, found with a cell list, sorted by (i, j). A pair slot
+// holds only its particles, a contact flag and, for a pair in contact, its row in the contact
+// table (dem/ContactTable.h), which keeps the histories and results of the few pairs in
+// contact: the pass that tests every listed pair reads 9 bytes a pair. The flags and rows are
+// carried across rebuilds by merging the old and new sorted lists, so a rebuild never resets
+// a spring. Each particle finds its pairs through firstStart (pairs where it is i, in order of
+// j) and secondStart/secondPair (pairs where it is j, in order of i), so that the force gather
+// sums every particle's pairs in index order with no atomics: bit-identical for any thread
+// count.
 #pragma once
-
-#include "dem/ContactModels.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -46,29 +47,29 @@ template <class Same> std::size_t forCommonPairs(const std::vector<std::uint32_t
 
 struct PairList {
   std::vector<std::uint32_t> first, second; // the pair's particles, first < second
-  std::vector<ContactHistory> history;
-  std::vector<char> active; // in contact at the last force evaluation
-  // 3 per pair, of the last force evaluation; only the slots of active pairs are meaningful.
-  std::vector<double> force, torqueFirst, torqueSecond;
-  std::vector<std::size_t> firstStart;  // n + 1: pairs firstStart[i] .. firstStart[i+1]-1 have i
-  std::vector<std::size_t> secondStart; // n + 1: into secondPair
-  std::vector<std::size_t> secondPair;  // pairs by second member, in increasing order of first
+  std::vector<char> active;                 // in contact at the last force evaluation
+  std::vector<std::uint32_t> row;           // of an active pair: its row in the contact table
+  std::vector<std::size_t> firstStart;   // n + 1: pairs firstStart[i] .. firstStart[i+1]-1 have i
+  std::vector<std::size_t> secondStart;  // n + 1: into secondPair
+  std::vector<std::uint32_t> secondPair; // pairs by second member, in increasing order of first
 
   std::size_t size() const { return first.size(); }
 
   // Rebuilds the list for n particles (positions x, radii r, largest radius rmax), keeping
-  // the history and contact flag of every pair that stays; new pairs start empty.
+  // the contact flag and table row of every pair that stays; new pairs start apart.
   void build(const double* x, const double* r, std::size_t n, double rmax, double skin);
 
   // Drops the pairs of removed particles and renumbers the rest (newIndex is increasing,
-  // so the list stays sorted). The per-particle indices need a build() afterwards.
-  void removeParticles(const std::vector<char>& remove, const std::vector<std::uint32_t>& newIndex);
+  // so the list stays sorted) and their table rows (newRow). The per-particle indices need a
+  // build() afterwards.
+  void removeParticles(const std::vector<char>& remove, const std::vector<std::uint32_t>& newIndex,
+                       const std::vector<std::uint32_t>& newRow);
 
 private:
   // The previous build's arrays, reused by the next one.
   std::vector<std::uint32_t> spareFirst_, spareSecond_;
-  std::vector<ContactHistory> spareHistory_;
   std::vector<char> spareActive_;
+  std::vector<std::uint32_t> spareRow_;
 };
 
 } // namespace craterkit

@@ -1,7 +1,7 @@
 // CraterKit side of the DEM bed-impact benchmark (see run.py beside this file).
 //   ck_dem_bench make-bed FILE PARTICLES   settle a monodisperse RCP bed in a box, write it
 //   ck_dem_bench run FILE STEPS            add the impactor, run STEPS steps, print timings
-// Both print one JSON object on the last line.
+// Both print one JSON object on the last line; run's ends with a hash of the final state.
 #include "bed/GranularBed.h"
 #include "dem/DemSetup.h"
 #include "dem/DemSolver.h"
@@ -11,8 +11,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -25,6 +27,22 @@ constexpr double kRadius = 0.05, kDensity = 2000.0, kGravity = 9.81, kSpeed = 1.
 struct Box {
   double side, depth;
 };
+
+// FNV-1a over the bytes of the final positions, velocities and spins: two runs with equal
+// hashes ended in bit-identical states (e.g. before and after a change meant to keep them).
+std::uint64_t stateHash(const ParticleSet& s) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (const std::vector<double>* a : {&s.position, &s.velocity, &s.angularVelocity})
+    for (const double v : *a) {
+      unsigned char bytes[sizeof v];
+      std::memcpy(bytes, &v, sizeof v);
+      for (const unsigned char b : bytes) {
+        h ^= b;
+        h *= 1099511628211ULL;
+      }
+    }
+  return h;
+}
 
 Box boxFor(double particles) {
   // N ≈ 0.62 L * L * (L/2) / (4/3 π r^3)
@@ -110,10 +128,11 @@ int main(int argc, char** argv) {
       "\"seconds\": %.4f, \"kn\": %.17g, \"dt\": %.17g, \"mass\": %.17g, \"radius\": %.17g, "
       "\"impactor_radius\": %.17g, \"speed\": %.17g, \"side\": %.17g, \"depth\": %.17g, "
       "\"builds\": %zu, \"contacts\": %zu, \"damping_factor_n\": %.17g, "
-      "\"damping_factor_t\": %.17g}\n",
+      "\"damping_factor_t\": %.17g, \"state_hash\": \"%016llx\"}\n",
       omp_get_max_threads(), s.size(), steps, seconds, k.kN, k.dt, m, kRadius, imp.radius, kSpeed,
       box.side, box.depth, solver.neighbourBuilds(), solver.diagnostics().contacts,
       clippedDampingFactor(NormalLawKind::LinearSpringDashpot, p.contact.restitutionN),
-      dashpotFactor(p.contact.restitutionT));
+      dashpotFactor(p.contact.restitutionT),
+      static_cast<unsigned long long>(stateHash(solver.particles())));
   return 0;
 }

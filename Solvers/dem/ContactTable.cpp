@@ -1,0 +1,184 @@
+#include "dem/ContactTable.h"
+
+#include "dem/PairList.h"
+#include "sph/SimdClones.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace craterkit {
+
+void ContactTable::resize(std::size_t count) {
+  rows = count;
+  first.resize(count);
+  second.resize(count);
+  from.resize(count);
+  for (std::vector<double>& h : history) {
+    h.resize(count + 1);
+    h[count] = 0.0;
+  }
+  result.resize(kResultWords * count);
+}
+
+ContactHistory ContactTable::historyAt(std::size_t c) const {
+  ContactHistory h;
+  for (int k = 0; k < 3; ++k) {
+    h.spring[k] = history[k][c];
+    h.rolling[k] = history[3 + k][c];
+    h.normal[k] = history[7 + k][c];
+  }
+  h.twisting = history[6][c];
+  return h;
+}
+
+void ContactTable::setHistory(std::size_t c, const ContactHistory& h) {
+  for (int k = 0; k < 3; ++k) {
+    history[k][c] = h.spring[k];
+    history[3 + k][c] = h.rolling[k];
+    history[7 + k][c] = h.normal[k];
+  }
+  history[6][c] = h.twisting;
+}
+
+void ContactTable::removeParticles(const std::vector<char>& remove,
+                                   const std::vector<std::uint32_t>& newIndex,
+                                   std::vector<std::uint32_t>& newRow) {
+  newRow.assign(rows, ~0u);
+  std::size_t o = 0;
+  for (std::size_t c = 0; c < rows; ++c) {
+    if (remove[first[c]] || remove[second[c]])
+      continue;
+    first[o] = newIndex[first[c]];
+    second[o] = newIndex[second[c]];
+    for (std::vector<double>& h : history)
+      h[o] = h[c];
+    newRow[c] = static_cast<std::uint32_t>(o++);
+  }
+  resize(o);
+}
+
+namespace {
+
+// The loop of evaluateContacts, compiled once per law and per instruction set.
+template <class Law>
+CK_ALWAYS_INLINE double evaluateRows(const Law& law, const FrictionConstants& fc, double dt,
+                                     const ContactInputs& in, const ContactTable& before,
+                                     ContactTable& now, std::size_t begin, std::size_t end) {
+  const double *x = in.x, *r = in.r, *m = in.m, *v = in.v, *w = in.w;
+  const std::uint32_t *pi = now.first.data(), *pj = now.second.data(), *from = now.from.data();
+  const double* hb[ContactTable::kHistoryWords];
+  double* hn[ContactTable::kHistoryWords];
+  for (int q = 0; q < ContactTable::kHistoryWords; ++q) {
+    hb[q] = before.history[q].data();
+    hn[q] = now.history[q].data();
+  }
+  double* res = now.result.data();
+  const FrictionConstants f = fc; // a local copy: no store in the loop can change it
+  double worst = 0.0;
+#pragma omp simd reduction(max : worst)
+  for (std::size_t c = begin; c < end; ++c) {
+    const std::size_t i = pi[c], j = pj[c], b = from[c];
+    ContactLane l;
+    const double rho[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1],
+                           x[3 * j + 2] - x[3 * i + 2]};
+    const double d2 = dot3(rho, rho), sum = r[i] + r[j];
+    const double d = std::sqrt(d2);
+    for (int k = 0; k < 3; ++k)
+      l.n[k] = rho[k] / d;
+    l.overlap = sum - d;
+    l.leverP = (r[i] * r[i] - r[j] * r[j] + d2) / (2.0 * d);
+    l.leverN = d - l.leverP;
+    const double wi[3] = {w[3 * i], w[3 * i + 1], w[3 * i + 2]};
+    const double wj[3] = {w[3 * j], w[3 * j + 1], w[3 * j + 2]};
+    double ci[3], cj[3];
+    cross3(l.n, wj, cj);
+    cross3(l.n, wi, ci);
+    // Surface velocities: p's contact point is at +l_p n from its centre, n's at -l_n n.
+    for (int k = 0; k < 3; ++k) {
+      l.u[k] = ((v[3 * j + k] - v[3 * i + k]) + l.leverN * cj[k]) + l.leverP * ci[k];
+      l.omegaRel[k] = wj[k] - wi[k];
+      l.omegaSum[k] = wi[k] + wj[k];
+    }
+    l.reducedMass = m[i] * m[j] / (m[i] + m[j]);
+    l.reducedRadius = r[i] * r[j] / sum;
+    for (int k = 0; k < 3; ++k) {
+      l.spring[k] = hb[k][b];
+      l.rolling[k] = hb[3 + k][b];
+      l.normal[k] = hb[7 + k][b];
+    }
+    l.twisting = hb[6][b];
+    ssdemContactLane(law, f, l, dt);
+    for (int k = 0; k < 3; ++k) {
+      hn[k][c] = l.spring[k];
+      hn[3 + k][c] = l.rolling[k];
+      hn[7 + k][c] = l.normal[k];
+      res[ContactTable::kResultWords * c + k] = l.force[k];
+      res[ContactTable::kResultWords * c + 3 + k] = l.torqueP[k];
+      res[ContactTable::kResultWords * c + 6 + k] = l.torqueN[k];
+    }
+    hn[6][c] = l.twisting;
+    worst = std::max(worst, l.overlap / std::min(r[i], r[j]));
+  }
+  return worst;
+}
+
+} // namespace
+
+CK_SIMD_CLONES double evaluateContacts(const LinearSpringDashpot& law, const FrictionConstants& fc,
+                                       double dt, const ContactInputs& in,
+                                       const ContactTable& before, ContactTable& now,
+                                       std::size_t begin, std::size_t end) {
+  return evaluateRows(law, fc, dt, in, before, now, begin, end);
+}
+
+CK_SIMD_CLONES double evaluateContacts(const Hertz& law, const FrictionConstants& fc, double dt,
+                                       const ContactInputs& in, const ContactTable& before,
+                                       ContactTable& now, std::size_t begin, std::size_t end) {
+  return evaluateRows(law, fc, dt, in, before, now, begin, end);
+}
+
+void WallContacts::build(const std::vector<std::uint64_t>& near) {
+  const std::size_t n = near.size();
+  std::vector<std::size_t> nextStart(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    nextStart[i + 1] = nextStart[i] + static_cast<std::size_t>(__builtin_popcountll(near[i]));
+  const std::size_t size = nextStart[n];
+  std::vector<std::uint32_t> nextParticle(size), nextWall(size);
+  for (std::size_t i = 0, c = 0; i < n; ++i)
+    for (std::uint64_t bits = near[i]; bits != 0; bits &= bits - 1, ++c) {
+      nextParticle[c] = static_cast<std::uint32_t>(i);
+      nextWall[c] = static_cast<std::uint32_t>(__builtin_ctzll(bits));
+    }
+  // Carry the histories of the entries that stay (both lists sorted by (particle, wall)).
+  std::vector<ContactHistory> nextHistory(size);
+  std::vector<char> nextActive(size, 0);
+  forCommonPairs(particle, wall, nextParticle, nextWall, [&](std::size_t a, std::size_t b) {
+    nextHistory[b] = history[a];
+    nextActive[b] = active[a];
+  });
+  start.swap(nextStart);
+  particle.swap(nextParticle);
+  wall.swap(nextWall);
+  history.swap(nextHistory);
+  active.swap(nextActive);
+}
+
+void WallContacts::removeParticles(const std::vector<char>& remove,
+                                   const std::vector<std::uint32_t>& newIndex) {
+  std::size_t o = 0;
+  for (std::size_t c = 0; c < particle.size(); ++c) {
+    if (remove[particle[c]])
+      continue;
+    particle[o] = newIndex[particle[c]];
+    wall[o] = wall[c];
+    history[o] = history[c];
+    active[o] = active[c];
+    ++o;
+  }
+  particle.resize(o);
+  wall.resize(o);
+  history.resize(o);
+  active.resize(o);
+}
+
+} // namespace craterkit

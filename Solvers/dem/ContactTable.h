@@ -1,0 +1,79 @@
+// The DEM's compact contact tables (pkdgrav SSDEM; Schwartz, Richardson & Michel 2012): the
+// pairs in contact, and the (particle, wall) pairs within reach, with their contact histories
+// (ContactHistory: tangential spring, rolling displacement, twisting angle, last normal).
+//
+// A bed at rest has a few per cent of its listed pairs in contact. The pair list
+// (dem/PairList.h) keeps per pair only its particles, a flag and a row of the table; the table
+// holds the contacts' histories and results as arrays of components. Each step writes a new
+// table from the pairs found touching, in the order of the pair list; each row reads its
+// history from its row of the previous table (`from`; the zero row past the end for a new
+// contact), so the contact law runs over contiguous arrays. The loop is written for SIMD
+// (`omp simd`, a branch-free law, compiled for AVX-512 and generic x86-64 as in
+// sph/SimdClones.h), but GCC 12 keeps it scalar (-fopt-info-vec: "control flow in loop" for
+// x86-64, "no vectype" at the position loads for AVX-512). Every contact is evaluated on its
+// own: the results depend neither on its row nor on the number of threads.
+#pragma once
+
+#include "dem/ContactModels.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace craterkit {
+
+struct ContactTable {
+  static constexpr int kHistoryWords = 10; // spring (3), rolling (3), twisting, normal (3)
+  static constexpr int kResultWords = 9;   // force on first, torque on first, on second
+
+  std::size_t rows = 0;
+  std::vector<std::uint32_t> first, second; // the particles, first < second
+  std::vector<std::uint32_t> from;          // row in the previous table (its `rows`: new)
+  // Component q of row c's history is history[q][c]; row `rows` is all zero (a new contact).
+  std::array<std::vector<double>, kHistoryWords> history;
+  std::vector<double> result; // kResultWords per row
+
+  // Sets the number of rows (keeping the memory) and zeroes the history row past the end.
+  void resize(std::size_t count);
+  ContactHistory historyAt(std::size_t row) const;
+  void setHistory(std::size_t row, const ContactHistory& h);
+  // Drops the rows of removed particles and renumbers the rest (newIndex is increasing, so
+  // the order stays); newRow receives each old row's new row.
+  void removeParticles(const std::vector<char>& remove, const std::vector<std::uint32_t>& newIndex,
+                       std::vector<std::uint32_t>& newRow);
+};
+
+// Particle data the contact law reads: positions, radii, masses, predicted velocities, spins.
+struct ContactInputs {
+  const double *x, *r, *m, *v, *w;
+};
+
+// Evaluates rows [begin, end) of NOW: the geometry from the particles, the history from
+// BEFORE's row now.from[c], the contact law (ssdemContactLane); writes each row's history and
+// result. Returns the largest overlap relative to the smaller radius (0 if none).
+double evaluateContacts(const LinearSpringDashpot& law, const FrictionConstants& fc, double dt,
+                        const ContactInputs& in, const ContactTable& before, ContactTable& now,
+                        std::size_t begin, std::size_t end);
+double evaluateContacts(const Hertz& law, const FrictionConstants& fc, double dt,
+                        const ContactInputs& in, const ContactTable& before, ContactTable& now,
+                        std::size_t begin, std::size_t end);
+
+// The (particle, wall) pairs within reach at the last neighbour-list build, sorted by particle
+// then wall, with their histories stored densely (only the grains at the container touch it).
+// Carried across rebuilds by merging, as the pair list is.
+struct WallContacts {
+  std::vector<std::size_t> start; // n + 1: entries start[i] .. start[i+1]-1 are particle i's
+  std::vector<std::uint32_t> particle, wall;
+  std::vector<ContactHistory> history;
+  std::vector<char> active; // in contact at the last force evaluation
+
+  std::size_t size() const { return particle.size(); }
+  // Rebuilds from per-particle masks of the walls within reach (bit w: wall w), keeping the
+  // history and flag of every entry that stays.
+  void build(const std::vector<std::uint64_t>& near);
+  // Drops the entries of removed particles and renumbers the rest; needs a build() after.
+  void removeParticles(const std::vector<char>& remove, const std::vector<std::uint32_t>& newIndex);
+};
+
+} // namespace craterkit
