@@ -96,11 +96,10 @@ void BondedImpactParams::validate() const {
 
 double estimateBondedBytes(double particles) {
   // Per particle: set-up arrays (57 B), solver state x, v, f, m, body and list reference
-  // (105 B), the next step's x and v computed ahead (48 B), bond adjacency (~30 B), three bonds
-  // with their flags (~55 B), the pair lists in blocks of eight (~100 B) and their staging while
-  // they are rebuilt (~120 B), cell list (~50 B). Measured at the headline size: 523 B before
-  // the second buffers, the process's own ~10 MB included.
-  return 610.0 * particles;
+  // (105 B), bond adjacency (~30 B), three bonds with their flags (~55 B), the pair lists in
+  // blocks of eight (~100 B) and their staging while they are rebuilt (~120 B), cell list
+  // (~50 B). Measured at the headline size: 523 B, the process's own ~10 MB included.
+  return 560.0 * particles;
 }
 
 void checkBondedMemory(double particles, double limit, const char* property) {

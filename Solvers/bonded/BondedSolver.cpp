@@ -280,22 +280,12 @@ void BondedSolver::computeForces(bool kick) {
   constexpr std::size_t kChunk = 64; // blocks per call
   const long chunks = static_cast<long>((blocks + kChunk - 1) / kChunk);
   long newlyBroken = 0;
-  double worst = 0.0;
-  if (kick) {
-    xNext_.resize(sys_.positions.size());
-    vNext_.resize(sys_.velocities.size());
-  }
   // Dynamic: a thread that loses its core for a while leaves its chunks to the others; which
   // thread computes a particle does not change its bits.
-#pragma omp parallel for schedule(dynamic) reduction(+ : newlyBroken) reduction(max : worst)
-  for (long c = 0; c < chunks; ++c) {
-    const std::size_t b0 = static_cast<std::size_t>(c) * kChunk, b1 = std::min(blocks, b0 + kChunk);
-    newlyBroken += blockForces(pass, b0, b1);
-    if (kick) // the chunk's particles are in cache: the next step's half kick and drift now
-      worst = std::max(worst, driftAhead(b0 * kLanes, b1 * kLanes));
-  }
-  ahead_ = kick;
-  aheadWorst_ = worst;
+#pragma omp parallel for schedule(dynamic) reduction(+ : newlyBroken)
+  for (long c = 0; c < chunks; ++c)
+    newlyBroken += blockForces(pass, static_cast<std::size_t>(c) * kChunk,
+                               std::min(blocks, (static_cast<std::size_t>(c) + 1) * kChunk));
   if (newlyBroken > 0)
     bookBreaks();
 }
@@ -338,67 +328,32 @@ void BondedSolver::bookBreaks() {
 
 // Velocity Verlet: half kick and drift (with the largest move since the list was built), the
 // lists rebuilt if a particle may have crossed half the skin, then the forces and, in the same
-// pass, the second half kick. After the first step the half kick and drift are done ahead, in
-// the previous step's pass (driftAhead), into second buffers that the step then swaps in.
+// pass, the second half kick.
 void BondedSolver::step() {
-  double worst = aheadWorst_;
-  if (ahead_) {
-    sys_.positions.swap(xNext_);
-    sys_.velocities.swap(vNext_);
-  } else {
-    worst = 0.0;
-    const long n = static_cast<long>(sys_.size());
-    double* x = sys_.positions.data();
-    double* v = sys_.velocities.data();
-    const double* m = sys_.masses.data();
-    const double* o = listOrigin_.data();
-    const double dt = dt_;
+  const long n = static_cast<long>(sys_.size());
+  double* x = sys_.positions.data();
+  double* v = sys_.velocities.data();
+  const double* m = sys_.masses.data();
+  const double* o = listOrigin_.data();
+  const double dt = dt_;
+  double worst = 0.0;
 #pragma omp parallel for schedule(dynamic, 2048) reduction(max : worst)
-    for (long i = 0; i < n; ++i) {
-      const double h = 0.5 * dt / m[i];
-      double d2 = 0.0;
-      for (int k = 0; k < 3; ++k) {
-        v[3 * i + k] += h * force_[3 * i + k];
-        x[3 * i + k] += dt * v[3 * i + k];
-        const double d = x[3 * i + k] - o[3 * i + k];
-        d2 += d * d;
-      }
-      worst = std::max(worst, d2);
+  for (long i = 0; i < n; ++i) {
+    const double h = 0.5 * dt / m[i];
+    double d2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      v[3 * i + k] += h * force_[3 * i + k];
+      x[3 * i + k] += dt * v[3 * i + k];
+      const double d = x[3 * i + k] - o[3 * i + k];
+      d2 += d * d;
     }
+    worst = std::max(worst, d2);
   }
   const double half = 0.5 * params_.skin * sys_.law.sigma;
   if (worst > half * half)
     buildPairs();
   computeForces(true);
   ++step_;
-}
-
-// The next step's half kick and drift of particles [i0, i1) into the second buffers, with the
-// same operations as the loop in step() (so the same bits); returns their largest squared move
-// since the lists were built. Not cloned for AVX-512, like step(), so that no multiply-add is
-// fused differently.
-double BondedSolver::driftAhead(std::size_t i0, std::size_t i1) {
-  i1 = std::min(i1, sys_.size());
-  const double* x = sys_.positions.data();
-  const double* v = sys_.velocities.data();
-  const double* m = sys_.masses.data();
-  const double* o = listOrigin_.data();
-  double* xn = xNext_.data();
-  double* vn = vNext_.data();
-  const double dt = dt_;
-  double worst = 0.0;
-  for (std::size_t i = i0; i < i1; ++i) {
-    const double h = 0.5 * dt / m[i];
-    double d2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      vn[3 * i + k] = v[3 * i + k] + h * force_[3 * i + k];
-      xn[3 * i + k] = x[3 * i + k] + dt * vn[3 * i + k];
-      const double d = xn[3 * i + k] - o[3 * i + k];
-      d2 += d * d;
-    }
-    worst = std::max(worst, d2);
-  }
-  return worst;
 }
 
 void BondedSolver::advance(std::size_t steps, const ProgressCallback& progress) {

@@ -19,12 +19,6 @@
 // distance has the same bits from either side); its spring energy is booked as dissipated (so
 // that kinetic + repulsive + bond + dissipated energy is what the integrator conserves).
 //
-// The pass also does the next step's first half kick and drift of each chunk of particles while
-// they are in cache, into second position and velocity buffers that the next step swaps in (the
-// drift as its own pass read x, v, f and m again from memory). The same operations in the same
-// order, outside the AVX-512 clone, so the same bits; the state a step leaves (positions,
-// velocities, forces) is the one of the plain scheme.
-//
 // OpenMP without atomics (chunks handed out dynamically, which changes no result): each particle
 // sums its own list entries in index order of the partners, and energies are summed over fixed-size
 // chunks in chunk order. Results are therefore bit-identical for any thread count; and because
@@ -91,7 +85,6 @@ private:
   void buildPairs();
   void computeForces(bool kick);
   void bookBreaks();
-  double driftAhead(std::size_t i0, std::size_t i1);
 
   BondedSystem sys_;
   BondedSolverParams params_;
@@ -101,10 +94,6 @@ private:
   std::size_t builds_ = 0;
   double dissipated_ = 0.0;
   std::vector<double> force_, listOrigin_;
-  // The next step's positions and half-step velocities, computed ahead by the force pass.
-  std::vector<double> xNext_, vNext_;
-  bool ahead_ = false;
-  double aheadWorst_ = 0.0;
   std::vector<std::uint8_t> bondBroken_; // 0 intact, 1 broken
   std::vector<std::size_t> bondStart_;   // each particle's bonds: bondsOf_[bondStart_[i]...]
   std::vector<std::uint32_t> bondsOf_;
