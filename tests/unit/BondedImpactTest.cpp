@@ -232,7 +232,7 @@ TEST(BondedImpact, BarBreaksWhereBondsPassCutoffOnly) {
 }
 
 // The pair lists hold every pair that acts: at every 10th step of a 6.7 km/s impact (the lists
-// rebuilt every few dozen steps, the drift done ahead), each particle's force equals
+// rebuilt every few dozen steps), each particle's force equals
 // the sum over all other particles of Eq. 3 for r < r_eq and Eq. 4 for its intact bonds. Both
 // sums add the same terms (pairs out of range add exactly zero), in different orders and with
 // the solver's branch-free form of the law, so they agree to rounding: 1e-12 of the sum of the
