@@ -257,6 +257,7 @@ void BondedSolver::buildPairs() {
   }
   blockBreaks_.assign(blocks, 0);
   listOrigin_ = sys_.positions;
+  ++builds_;
 }
 
 void BondedSolver::computeForces(bool kick) {

@@ -69,6 +69,8 @@ public:
   double time() const { return dt_ * static_cast<double>(step_); }
   std::uint64_t stepCount() const { return step_; }
   std::size_t brokenBonds() const { return broken_; }
+  // Pair-list builds since construction or restore (the restore's own build included).
+  std::size_t listBuilds() const { return builds_; }
   const BondedSystem& system() const { return sys_; }
   const std::vector<std::uint8_t>& bondBroken() const { return bondBroken_; }
   const std::vector<double>& forces() const { return force_; }
@@ -89,6 +91,7 @@ private:
   double dt_ = 0.0;
   std::uint64_t step_ = 0;
   std::size_t broken_ = 0;
+  std::size_t builds_ = 0;
   double dissipated_ = 0.0;
   std::vector<double> force_, listOrigin_;
   std::vector<std::uint8_t> bondBroken_; // 0 intact, 1 broken

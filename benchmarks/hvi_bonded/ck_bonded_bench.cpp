@@ -6,7 +6,14 @@
 //   ck_bonded_bench run PARTICLES STEPS [WARMUP]
 //                                          run WARMUP untimed steps, then STEPS timed ones of
 //                                          the same set-up; print timings
-// Both print one JSON object on the last line.
+//   ck_bonded_bench checkpoint FILE PARTICLES STEPS
+//                                          advance the set-up STEPS steps (into the impact) and
+//                                          write the solver's checkpoint to FILE
+//   ck_bonded_bench continue FILE STEPS    advance the checkpoint FILE STEPS more steps, rewrite it
+//   ck_bonded_bench resume FILE STEPS      time STEPS steps from the checkpoint FILE: a window
+//                                          inside the impact without repeating the steps to it
+// All print one JSON object on the last line; checkpoint, continue and resume also a hash of the
+// final positions and velocities (equal hashes: bit-identical states).
 #include "bonded/BondedBody.h"
 #include "bonded/BondedSolver.h"
 
@@ -14,8 +21,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -65,14 +74,63 @@ void writeData(const std::string& path, const BondedSystem& s) {
   std::fclose(f);
 }
 
+// FNV-1a over the bytes of the positions and velocities.
+std::uint64_t stateHash(const BondedSystem& s) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (const std::vector<double>* v : {&s.positions, &s.velocities})
+    for (double d : *v) {
+      unsigned char bytes[sizeof d];
+      std::memcpy(bytes, &d, sizeof d);
+      for (unsigned char c : bytes)
+        h = (h ^ c) * 1099511628211ULL;
+    }
+  return h;
+}
+
+// The checkpoint modes: checkpoint / continue write FILE after advancing, resume times the steps.
+int checkpointMode(const std::string& mode, int argc, char** argv) {
+  const std::string path = argv[2];
+  if (mode == "checkpoint" && argc < 5) {
+    std::cerr << "usage: ck_bonded_bench checkpoint FILE PARTICLES STEPS\n";
+    return 2;
+  }
+  const long steps = std::max(0L, std::atol(argv[mode == "checkpoint" ? 4 : 3]));
+  const auto t0 = std::chrono::steady_clock::now();
+  BondedSolver solver = mode == "checkpoint" ? BondedSolver(headline(std::atof(argv[3])))
+                                             : BondedSolver::readCheckpoint(path);
+  const std::size_t brokenBefore = solver.brokenBonds(), buildsBefore = solver.listBuilds();
+  const auto start = std::chrono::steady_clock::now();
+  solver.advance(static_cast<std::size_t>(steps));
+  const auto end = std::chrono::steady_clock::now();
+  if (mode != "resume")
+    solver.writeCheckpoint(path);
+  const double seconds = std::chrono::duration<double>(end - start).count();
+  const std::size_t n = solver.system().size();
+  std::printf("{\"mode\": \"%s\", \"particles\": %zu, \"step\": %llu, \"time\": %.6g, "
+              "\"steps\": %ld, \"threads\": %d, \"setup_seconds\": %.6g, "
+              "\"loop_seconds\": %.6g, \"steps_per_s\": %.6g, \"particle_steps_per_s\": %.6g, "
+              "\"list_builds\": %zu, \"broken_bonds\": %zu, \"broken_timed\": %zu, "
+              "\"state_hash\": \"%016llx\"}\n",
+              mode.c_str(), n, static_cast<unsigned long long>(solver.stepCount()), solver.time(),
+              steps, omp_get_max_threads(), std::chrono::duration<double>(start - t0).count(),
+              seconds, steps / seconds, static_cast<double>(n) * steps / seconds,
+              solver.listBuilds() - buildsBefore, solver.brokenBonds(),
+              solver.brokenBonds() - brokenBefore,
+              static_cast<unsigned long long>(stateHash(solver.system())));
+  return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::cerr << "usage: ck_bonded_bench data FILE PARTICLES | run PARTICLES STEPS\n";
+    std::cerr << "usage: ck_bonded_bench data FILE PARTICLES | run PARTICLES STEPS [WARMUP] | "
+                 "checkpoint FILE PARTICLES STEPS | continue FILE STEPS | resume FILE STEPS\n";
     return 2;
   }
   const std::string mode = argv[1];
+  if (mode == "checkpoint" || mode == "continue" || mode == "resume")
+    return checkpointMode(mode, argc, argv);
   if (mode == "data") {
     const BondedSystem s = headline(std::atof(argv[3]));
     writeData(argv[2], s);
