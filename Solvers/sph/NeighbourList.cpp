@@ -316,7 +316,6 @@ void NeighbourList::build(const SphState& s, const SphParams& par, const std::ve
   setLevels(s, hmax, hmin);
   const Grids grids(s, pos, id, level_, static_cast<int>(levels_), margin_, grow);
   listAll(grids, s, par, reach, margins);
-  pairs_.build(start_, entry_, kNoShift);
 }
 
 void NeighbourList::setMargins(const SphState& s, const SphParams& par,

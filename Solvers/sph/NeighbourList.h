@@ -7,8 +7,6 @@
 // margins. The build gives the same lists, in the same order, for any thread count.
 #pragma once
 
-#include "sph/PairSlots.h"
-
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -39,7 +37,6 @@ public:
   const std::vector<std::uint32_t>& start() const { return start_; } // CSR offsets, size n+1
   const std::vector<std::uint32_t>& entry() const { return entry_; } // index * 32 + image code
   std::vector<std::uint32_t> sortedOf(std::size_t a) const;          // a's entries, sorted
-  const PairSlots& pairs() const { return pairs_; } // each pair once (sph/PairSlots.h)
   double margin(std::size_t a) const { return margin_[a]; }
   std::size_t builds() const { return builds_; }
 
@@ -68,7 +65,6 @@ private:
   std::size_t levels_ = 1;
   double grow_ = 1.0;
   std::size_t builds_ = 0;
-  PairSlots pairs_;
   mutable std::vector<double> moved_; // valid()'s displacement bounds (reused)
 };
 

@@ -146,36 +146,21 @@ struct Packed {
   double c;
   double s[6]; // S/ρ²
 };
-
-// A partner's share of the pair terms, as summed in its slots (sph/PairSlots.h): acceleration
-// (3), dρ/dt, du/dt, the velocity gradient (9), the XSPH correction (3, when on) and, last, the
-// largest signal speed (a maximum, not a sum).
-template <bool Xsph> struct Share {
-  static constexpr std::size_t size = Xsph ? 18 : 15;
-  static constexpr std::size_t sig = size - 1;
-};
-constexpr std::size_t kMaxShare = 18;
-
-// Per-thread buffers of one particle's interacting pairs.
+// Per-thread buffers of one particle's interacting neighbours.
 struct Scratch {
   // 64-bit like the doubles: with 32-bit indices the compiler runs the pair loop sixteen wide,
   // two vectors per sum, which spills the sums to memory and leaves up to 15 pairs to scalar code.
   std::vector<std::uint64_t> idx;
-  std::vector<std::uint32_t> slot; // the partner's slot
   std::vector<double> rx, ry, rz, r2;
-  std::vector<double> share; // the partners' shares: kMaxShare arrays of cap pairs
-  std::size_t cap = 0;
   void resize(std::size_t n) {
-    cap = n;
-    idx.resize(n), slot.resize(n), rx.resize(n), ry.resize(n), rz.resize(n), r2.resize(n);
-    share.resize(kMaxShare * n);
+    idx.resize(n), rx.resize(n), ry.resize(n), rz.resize(n), r2.resize(n);
   }
 };
 
 // The pair stream is padded to a multiple of the AVX-512 vector's eight doubles.
 constexpr std::size_t kLanes = 8;
 
-// What one particle's own pairs add up to (§2.2, §2.3).
+// What one particle's neighbours add up to (§2.2, §2.3).
 struct PairSums {
   double acc[3], dr, de, grad[9], xs[3], sig;
 };
@@ -186,18 +171,16 @@ struct PairConstants {
   double period[3]; // box lengths of the periodic axes
 };
 
-// Pass 1 of the pair terms: the pairs of `entries` (index * 32 + image code; each pair once,
-// sph/PairSlots.h) inside the pair's support, with their separations and the partners' slots,
-// packed into w and padded to whole vectors; returns their number with the padding, `real`
-// without. A function of its own so that its few pointers stay in registers.
+// Pass 1 of the pair terms: the entries of `entries` (index * 32 + image code) inside the pair's
+// support, with their separations, packed into w and padded to whole vectors; returns their
+// number with the padding. A function of its own so that its few pointers stay in registers
+// (inside pairSums they were reloaded from the stack at every entry).
 template <bool Periodic>
 std::size_t supportStream(const Packed* Pp, std::uint32_t self, const std::uint32_t* entries,
-                          const std::uint32_t* slots, std::uint32_t count, Scratch& w,
-                          std::size_t& real, const PairConstants& pc) {
-  if (w.cap < count + kLanes)
+                          std::uint32_t count, Scratch& w, const PairConstants& pc) {
+  if (w.idx.size() < count + kLanes)
     w.resize(count + kLanes);
   std::uint64_t* __restrict wi = w.idx.data();
-  std::uint32_t* __restrict ws = w.slot.data();
   double* __restrict wx = w.rx.data();
   double* __restrict wy = w.ry.data();
   double* __restrict wz = w.rz.data();
@@ -219,39 +202,32 @@ std::size_t supportStream(const Packed* Pp, std::uint32_t self, const std::uint3
     const double hb = 0.5 * (ah + B.h);
     // Written always, kept only inside the support: no branch to mispredict (about a third
     // of the listed pairs are in the list's margin).
-    wi[m] = code >> 5, ws[m] = slots[k];
+    wi[m] = code >> 5;
     wx[m] = rx, wy[m] = ry, wz[m] = rz, w2[m] = r2;
     m += (r2 < hb * hb) & (r2 != 0.0);
   }
-  real = m;
   // Padded so that pass 2 never runs its scalar remainder (which took a fifth of its time): the
   // particle itself at zero separation, with r2 = (h/2)² only to keep the kernel finite. Each
-  // of its terms carries a factor r_ab or v_ab, so it adds exact zeros (and it has no slot).
+  // of its terms carries a factor r_ab or v_ab, so it adds exact zeros.
   for (; m % kLanes != 0; ++m)
     wi[m] = self, wx[m] = 0.0, wy[m] = 0.0, wz[m] = 0.0, w2[m] = 0.25 * ah * ah;
   return m;
 }
 
-// Pass 2: the pair terms of owner A over the m pairs of supportStream in w, A's share summed,
-// each partner's share written to w.share. Cloned (sph/SimdClones.h) for x86-64-v4 (AVX-512),
-// chosen at run time where the processor has it: its 32 vector registers hold the loop's 17
-// sums and temporaries, so the pair loop runs eight pairs wide (AVX2, with 16 registers,
-// spills and gains nothing). Elsewhere the generic code runs. The two differ only by rounding.
-// The partner's terms are A's seen from b: r_ba = −r_ab and v_ba = −v_ab, so that the kernel
-// gradient, v_ab · r_ab, the viscosity and the summed stresses are the same, with a's mass and
-// b's own p/ρ² and S/ρ² where they enter.
+// Pass 2: the pair terms of particle A over the m pairs of supportStream in w. Cloned
+// (sph/SimdClones.h) for x86-64-v4 (AVX-512), chosen at run time where the processor has it:
+// its 32 vector registers hold the loop's 17 sums and temporaries, so the pair loop runs eight
+// pairs wide (27 % less time for the SCI-like run here; AVX2, with 16 registers, spills and
+// gains nothing). Elsewhere the generic code runs. The two differ only by rounding.
 template <class K, bool Xsph> CK_SIMD_CLONES PairSums pairSums(const Packed* Pp, const Packed& A,
-                                                               std::size_t m, Scratch& w,
+                                                               std::size_t m, const Scratch& w,
                                                                const PairConstants& pc) {
-  using Sh = Share<Xsph>;
   // Branch-free so that the compiler vectorises the loop.
   double acc0 = 0, acc1 = 0, acc2 = 0, dr = 0, de = 0, sig = 0;
   double g0 = 0, g1 = 0, g2 = 0, g3 = 0, g4 = 0, g5 = 0, g6 = 0, g7 = 0, g8 = 0, xs0 = 0, xs1 = 0,
          xs2 = 0;
   const std::uint64_t* idx = w.idx.data();
   const double *RX = w.rx.data(), *RY = w.ry.data(), *RZ = w.rz.data(), *R2 = w.r2.data();
-  const std::size_t cap = w.cap;
-  double* __restrict o = w.share.data();
   const double* sa = A.s;
   const double sa0 = sa[0], sa1 = sa[1], sa2 = sa[2], sa3 = sa[3], sa4 = sa[4], sa5 = sa[5];
   const double av = pc.av, bv = pc.bv, xsph = pc.xsph, stressOn = pc.stressOn, gradOn = pc.gradOn;
@@ -270,103 +246,32 @@ template <class K, bool Xsph> CK_SIMD_CLONES PairSums pairSums(const Packed* Pp,
     const double pi = vr < 0.0 ? piRaw : 0.0;
     const double sgn = vr < 0.0 ? A.c + B.c - 3.0 * vr * rinv : 0.0;
     sig = sig > sgn ? sig : sgn;
-    const double mg = B.m * g, mgb = A.m * g;
-    const double pp = A.pr + B.pr + pi;
-    const double f = mg * pp, fb = mgb * pp;
+    const double mg = B.m * g;
+    const double f = mg * (A.pr + B.pr + pi);
     // (S_a/ρ_a² + S_b/ρ_b²) · ∇_a W, and the stress power with the same pair terms so that
     // energy is conserved exactly: −Σ m_b (S_a/ρ_a²) : (v_ab ⊗ ∇_a W).
     const double t0 = sa0 + B.s[0], t1 = sa1 + B.s[1], t2 = sa2 + B.s[2];
     const double t3 = sa3 + B.s[3], t4 = sa4 + B.s[4], t5 = sa5 + B.s[5];
-    const double tx = t0 * rx + t3 * ry + t4 * rz, ty = t3 * rx + t1 * ry + t5 * rz,
-                 tz = t4 * rx + t5 * ry + t2 * rz;
-    const double ms = mg * stressOn, msb = mgb * stressOn;
-    acc0 += -f * rx + ms * tx;
-    acc1 += -f * ry + ms * ty;
-    acc2 += -f * rz + ms * tz;
-    o[k] = fb * rx - msb * tx;
-    o[cap + k] = fb * ry - msb * ty;
-    o[2 * cap + k] = fb * rz - msb * tz;
+    const double ms = mg * stressOn;
+    acc0 += -f * rx + ms * (t0 * rx + t3 * ry + t4 * rz);
+    acc1 += -f * ry + ms * (t3 * rx + t1 * ry + t5 * rz);
+    acc2 += -f * rz + ms * (t4 * rx + t5 * ry + t2 * rz);
     dr += mg * vr; // m_b v_ab · ∇_a W
-    o[3 * cap + k] = mgb * vr;
-    const double vxrx = vx * rx, vyry = vy * ry, vzrz = vz * rz;
-    const double sxy = vx * ry + vy * rx, sxz = vx * rz + vz * rx, syz = vy * rz + vz * ry;
     de += mg * (A.pr + 0.5 * pi) * vr -
-          ms * (sa0 * vxrx + sa1 * vyry + sa2 * vzrz + sa3 * sxy + sa4 * sxz + sa5 * syz);
-    o[4 * cap + k] =
-        mgb * (B.pr + 0.5 * pi) * vr - msb * (B.s[0] * vxrx + B.s[1] * vyry + B.s[2] * vzrz +
-                                              B.s[3] * sxy + B.s[4] * sxz + B.s[5] * syz);
-    // ∂_β v^α ≈ −Σ (m_b/ρ_b) v_ab^α ∂_β W; the same v_ab ⊗ r_ab for b, with a's volume.
-    const double wv = -B.vol * g * gradOn, wb = -A.vol * g;
+          ms * (sa0 * vx * rx + sa1 * vy * ry + sa2 * vz * rz + sa3 * (vx * ry + vy * rx) +
+                sa4 * (vx * rz + vz * rx) + sa5 * (vy * rz + vz * ry));
+    const double wv = -B.vol * g * gradOn; // ∂_β v^α ≈ −Σ (m_b/ρ_b) v_ab^α ∂_β W
     const double wx = wv * vx, wy = wv * vy, wz = wv * vz;
-    const double bx = wb * vx, by = wb * vy, bz = wb * vz;
     g0 += wx * rx, g1 += wx * ry, g2 += wx * rz;
     g3 += wy * rx, g4 += wy * ry, g5 += wy * rz;
     g6 += wz * rx, g7 += wz * ry, g8 += wz * rz;
-    o[5 * cap + k] = bx * rx, o[6 * cap + k] = bx * ry, o[7 * cap + k] = bx * rz;
-    o[8 * cap + k] = by * rx, o[9 * cap + k] = by * ry, o[10 * cap + k] = by * rz;
-    o[11 * cap + k] = bz * rx, o[12 * cap + k] = bz * ry, o[13 * cap + k] = bz * rz;
     if constexpr (Xsph) {
-      const double wk = xsph / (0.5 * (A.rho + B.rho)) * Branchless<K>::value(rr * ih, ih);
-      const double wx2 = B.m * wk, wb2 = A.m * wk;
+      const double wx2 = xsph * B.m / (0.5 * (A.rho + B.rho)) * Branchless<K>::value(rr * ih, ih);
       xs0 -= wx2 * vx, xs1 -= wx2 * vy, xs2 -= wx2 * vz;
-      o[14 * cap + k] = wb2 * vx, o[15 * cap + k] = wb2 * vy, o[16 * cap + k] = wb2 * vz;
     }
-    o[Sh::sig * cap + k] = sgn;
   }
   return PairSums{{acc0, acc1, acc2}, dr, de, {g0, g1, g2, g3, g4, g5, g6, g7, g8},
                   {xs0, xs1, xs2},    sig};
-}
-
-// Adds the partners' shares of pass 2 into their slots, in list order (`real` pairs: the
-// padding has no slot).
-template <bool Xsph> void addShares(const Scratch& w, std::size_t real, double* slots) {
-  using Sh = Share<Xsph>;
-  const std::size_t cap = w.cap;
-  const double* o = w.share.data();
-  for (std::size_t k = 0; k < real; ++k) {
-    double* q = slots + static_cast<std::size_t>(w.slot[k]) * Sh::size;
-    for (std::size_t c = 0; c < Sh::sig; ++c)
-      q[c] += o[c * cap + k];
-    q[Sh::sig] = std::max(q[Sh::sig], o[Sh::sig * cap + k]);
-  }
-}
-
-// Adds the owner's own sums into its own slot.
-template <bool Xsph> void addOwn(const PairSums& t, double* q) {
-  using Sh = Share<Xsph>;
-  for (int k = 0; k < 3; ++k)
-    q[k] += t.acc[k];
-  q[3] += t.dr, q[4] += t.de;
-  for (int k = 0; k < 9; ++k)
-    q[5 + k] += t.grad[k];
-  if constexpr (Xsph)
-    for (int k = 0; k < 3; ++k)
-      q[14 + k] += t.xs[k];
-  q[Sh::sig] = std::max(q[Sh::sig], t.sig);
-}
-
-// Packs what neighbours read of each particle; returns whether any particle has or can get a
-// deviatoric stress.
-bool packParticles(const SphState& s, const std::vector<double>& p, const std::vector<double>& c,
-                   const std::vector<double>& G, Packed* Pw) {
-  const std::size_t n = s.size();
-  bool anyStress = false;
-#pragma omp parallel for schedule(static) reduction(|| : anyStress) if (n >= 4096)
-  for (std::size_t i = 0; i < n; ++i) {
-    Packed& q = Pw[i];
-    const double ir2 = 1.0 / (s.rho[i] * s.rho[i]);
-    for (int k = 0; k < 3; ++k)
-      q.x[k] = s.x[3 * i + k], q.v[k] = s.v[3 * i + k];
-    q.h = s.h[i], q.rho = s.rho[i], q.m = s.mass[i], q.vol = s.mass[i] / s.rho[i];
-    q.pr = p[i] * ir2;
-    q.c = c[i];
-    for (int k = 0; k < 6; ++k) {
-      q.s[k] = s.S[6 * i + k] * ir2;
-      anyStress = anyStress || q.s[k] != 0.0;
-    }
-    anyStress = anyStress || G[static_cast<std::size_t>(s.material[i])] > 0.0;
-  }
-  return anyStress;
 }
 } // namespace
 
@@ -386,11 +291,30 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
   for (std::size_t m = 0; m < G.size(); ++m)
     G[m] = par_.materials[m].strength == Material::Strength::None ? 0.0
                                                                   : par_.materials[m].shearModulus;
+  std::vector<char> rigidMat(par_.materials.size());
+  for (std::size_t m = 0; m < rigidMat.size(); ++m)
+    rigidMat[m] = par_.materials[m].rigid;
   static thread_local std::vector<Packed>
       P; // reused: no allocation in the step loop; workers use Pp
   P.resize(n);
-  const bool anyStress = packParticles(s, p, c, G, P.data());
-  const Packed* Pp = P.data();
+  Packed* const Pw = P.data();
+  bool anyStress = false;
+#pragma omp parallel for schedule(static) reduction(|| : anyStress) if (n >= 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    Packed& q = Pw[i];
+    const double ir2 = 1.0 / (s.rho[i] * s.rho[i]);
+    for (int k = 0; k < 3; ++k)
+      q.x[k] = s.x[3 * i + k], q.v[k] = s.v[3 * i + k];
+    q.h = s.h[i], q.rho = s.rho[i], q.m = s.mass[i], q.vol = s.mass[i] / s.rho[i];
+    q.pr = p[i] * ir2;
+    q.c = c[i];
+    for (int k = 0; k < 6; ++k) {
+      q.s[k] = s.S[6 * i + k] * ir2;
+      anyStress = anyStress || q.s[k] != 0.0;
+    }
+    anyStress = anyStress || G[static_cast<std::size_t>(s.material[i])] > 0.0;
+  }
+  const Packed* Pp = Pw;
   static thread_local std::vector<Scratch>
       scratchOfCaller; // the calling thread's; workers use the pointer
   scratchOfCaller.resize(static_cast<std::size_t>(omp_get_max_threads()));
@@ -404,59 +328,28 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
                    {0.0, 0.0, 0.0}};
   for (int k = 0; k < 3; ++k)
     pc.period[k] = par_.periodic[k] ? par_.boxHi[k] - par_.boxLo[k] : 0.0;
-  // Each pair once (sph/PairSlots.h): a block of owners per task, each writing only its own
-  // block's slots, in index and list order; then each particle sums its slots in a fixed
-  // order. No atomics, and the same bits for any thread count.
-  using Sh = Share<Xsph>;
-  const PairSlots& ps = nb_.pairs();
-  static thread_local std::vector<double> slotsOfCaller;
-  slotsOfCaller.resize(ps.slots() * Sh::size);
-  double* const slots = slotsOfCaller.data();
-  const std::size_t blocks = ps.blocks();
-#pragma omp parallel for schedule(dynamic, 1) if (n >= 512)
-  for (std::size_t b = 0; b < blocks; ++b) {
-    std::fill(slots + ps.blockBase(b) * Sh::size, slots + ps.blockBase(b + 1) * Sh::size, 0.0);
-    Scratch& w = scratch[omp_get_thread_num()];
-    const std::size_t a1 = std::min(n, (b + 1) * PairSlots::kBlock);
-    for (std::size_t a = b * PairSlots::kBlock; a < a1; ++a) {
-      PairConstants pcA = pc;
-      pcA.gradOn = G[static_cast<std::size_t>(s.material[a])] > 0.0 ? 1.0 : 0.0;
-      const std::uint32_t first = ps.start()[a], count = ps.start()[a + 1] - first;
-      const std::uint32_t* entries = ps.entry().data() + first;
-      const std::uint32_t* slotOf = ps.slot().data() + first;
-      const std::uint32_t self = static_cast<std::uint32_t>(a);
-      std::size_t real = 0;
-      const std::size_t m =
-          pc.periodic ? supportStream<true>(Pp, self, entries, slotOf, count, w, real, pc)
-                      : supportStream<false>(Pp, self, entries, slotOf, count, w, real, pc);
-      const PairSums sums = pairSums<K, Xsph>(Pp, Pp[a], m, w, pcA);
-      addShares<Xsph>(w, real, slots);
-      addOwn<Xsph>(sums, slots + static_cast<std::size_t>(ps.ownSlot(a)) * Sh::size);
-    }
-  }
-  return finishRates(s, p, c, Sh::size, slots, r);
-}
-
-double SphSolver::finishRates(const SphState& s, const std::vector<double>& p,
-                              const std::vector<double>& c, std::size_t width, const double* slots,
-                              Rates& r) const {
-  const std::size_t n = s.size(), sigAt = width - 1;
-  const PairSlots& ps = nb_.pairs();
-  const bool hasFlaws = !fracture_.empty();
   double maxSignal = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : maxSignal) if (n >= 512)
+  // Each particle accumulates only its own rates (pairs are visited from both sides), so the
+  // loop needs no atomics and gives the same bits for any thread count.
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : maxSignal) if (n >= 512)
   for (std::size_t a = 0; a < n; ++a) {
-    // a's slots in their fixed order (the earlier blocks', then its own).
-    double t[kMaxShare] = {};
-    for (std::uint32_t q = ps.sumStart()[a]; q < ps.sumStart()[a + 1]; ++q) {
-      const double* sl = slots + static_cast<std::size_t>(ps.sumSlot()[q]) * width;
-      for (std::size_t k = 0; k < sigAt; ++k)
-        t[k] += sl[k];
-      t[sigAt] = std::max(t[sigAt], sl[sigAt]);
-    }
-    const Material& mat = par_.materials[static_cast<std::size_t>(s.material[a])];
-    const double G = mat.strength == Material::Strength::None ? 0.0 : mat.shearModulus;
-    const double* xa = &s.x[3 * a];
+    const Packed& A = Pp[a];
+    const bool solid = G[static_cast<std::size_t>(s.material[a])] > 0.0;
+    double signal = A.c;
+    PairConstants pcA = pc;
+    pcA.gradOn = solid ? 1.0 : 0.0;
+    const std::uint32_t first = nb_.start()[a];
+    Scratch& w = scratch[omp_get_thread_num()];
+    const std::uint32_t* entries = nb_.entry().data() + first;
+    const std::uint32_t count = nb_.start()[a + 1] - first, self = static_cast<std::uint32_t>(a);
+    const std::size_t m = pc.periodic ? supportStream<true>(Pp, self, entries, count, w, pc)
+                                      : supportStream<false>(Pp, self, entries, count, w, pc);
+    const PairSums sums = pairSums<K, Xsph>(Pp, A, m, w, pcA);
+    const double* acc = sums.acc;
+    const double* xs = sums.xs;
+    const double* grad = sums.grad;
+    signal = std::max(signal, sums.sig);
+    const double* xa = A.x;
     const double* Sa = &s.S[6 * a];
     double ext[3] = {par_.gravity[0], par_.gravity[1], par_.gravity[2]};
     if (par_.pointMassGM > 0.0) {
@@ -468,23 +361,23 @@ double SphSolver::finishRates(const SphState& s, const std::vector<double>& p,
         ext[0] += k * dx, ext[1] += k * dy, ext[2] += k * dz;
       }
     }
+    const bool rigid = rigidMat[static_cast<std::size_t>(s.material[a])];
     for (int k = 0; k < 3; ++k)
-      r.dv[3 * a + k] = mat.rigid ? 0.0 : t[k] + ext[k];
+      r.dv[3 * a + k] = rigid ? 0.0 : acc[k] + ext[k];
     if (par_.xsph > 0.0)
       for (int k = 0; k < 3; ++k)
-        r.dx[3 * a + k] = mat.rigid ? 0.0 : t[14 + k];
-    r.drho[a] = t[3];
-    r.du[a] = t[4];
+        r.dx[3 * a + k] = rigid ? 0.0 : xs[k];
+    r.drho[a] = sums.dr;
+    r.du[a] = sums.de;
     double* dS = &r.dS[6 * a];
-    if (G > 0.0)
-      deviatoricStressRate(G, t + 5, Sa, dS);
+    if (solid)
+      deviatoricStressRate(G[static_cast<std::size_t>(s.material[a])], grad, Sa, dS);
     else
       for (int k = 0; k < 6; ++k)
         dS[k] = 0.0;
     if (hasFlaws && fracture_.hasFlaws(a))
-      fracture_.damageRate(a, mat, Sa, p[a], s.damage[a], s.rho[a], s.mass[a], r.damage.rate[a],
-                           r.damage.cap[a]);
-    const double signal = std::max(c[a], t[sigAt]);
+      fracture_.damageRate(a, par_.materials[static_cast<std::size_t>(s.material[a])], Sa, p[a],
+                           s.damage[a], s.rho[a], s.mass[a], r.damage.rate[a], r.damage.cap[a]);
     maxSignal = std::max(maxSignal, signal / (0.5 * s.h[a]));
   }
   return maxSignal;

@@ -12,9 +12,8 @@
 // Heun corrector differ by more than a tolerance is taken again, shorter).
 //
 // Neighbours: Verlet lists from sparse cell lists, kept over steps (sph/NeighbourList.h).
-// Each pair is evaluated once, its partner's share summed in slots (sph/PairSlots.h); OpenMP
-// over fixed blocks of particles, each particle's slots summed in a fixed order, so results are
-// the same bits for any thread count.
+// OpenMP over particles; each particle sums only its own rates, so results are the same bits
+// for any thread count.
 #pragma once
 
 #include "sph/GradyKippFracture.h"
@@ -79,11 +78,6 @@ private:
                       Rates& r) const;
   template <class K, bool Xsph> double rates(const SphState& s, const std::vector<double>& p,
                                              const std::vector<double>& c, Rates& r) const;
-  // The rates' per-particle part: each particle's pair sums from its slots (sph/PairSlots.h,
-  // `width` doubles each, the last the signal speed), then the external force, the stress rate
-  // and damage; returns the largest signal speed over h/2.
-  double finishRates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c,
-                     std::size_t width, const double* slots, Rates& r) const;
   template <class K> void summation(SphState& s) const;
   double limitStep(const SphState& s, const Rates& r, double maxSignal) const;
   void imageShift(std::uint32_t code, double d[3]) const;

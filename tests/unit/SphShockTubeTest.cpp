@@ -1,7 +1,6 @@
 // The Sod shock tube in a 3D slab of SPH particles against the exact Riemann solution, and
 // the conservation of momentum and energy by the hydrodynamic core.
 #include "common/Random.h"
-#include "sph/NeighbourList.h"
 #include "sph/SphSolver.h"
 
 #include <gtest/gtest.h>
@@ -367,76 +366,6 @@ TEST(SphSolver, NeighbourListsOfGradedSmoothingLengthsHoldExactlyThePairsInRange
       EXPECT_EQ(mismatched, 0u);
     }
   }
-}
-
-// Each pair once (sph/PairSlots.h): of the full list's two entries of a pair, (a, b) and
-// (b, a) with the opposite image, exactly one is kept, in the owner's list, with a slot of the
-// owner's block that the partner sums; every slot belongs to one particle, and a particle's own
-// slot comes last. A periodic box smaller than the reach lists particles with their own
-// images (the pair of a and its image is seen from a on both sides), and two blocks share pairs.
-TEST(SphSolver, PairSlotsHoldEachPairOnceInASlotThePartnerSums) {
-  const double L = 0.05, h = 0.05; // reach 1.05 h > L: each particle meets its own images
-  SphParams par;
-  for (int k = 0; k < 3; ++k)
-    par.periodic[k] = true, par.boxLo[k] = 0.0, par.boxHi[k] = L;
-  SphState s;
-  Random rng(3);
-  const std::size_t n = 400; // two blocks of PairSlots::kBlock = 256
-  for (std::size_t i = 0; i < n; ++i) {
-    const double x[3] = {rng.uniform(0.0, L), rng.uniform(0.0, L), rng.uniform(0.0, L)};
-    const double v[3] = {0.0, 0.0, 0.0};
-    s.add(x, v, 1.0, 1000.0, 0.0, 0);
-  }
-  s.h.assign(n, h);
-  NeighbourList nb;
-  nb.build(s, par, {}, 0.0, false);
-  const PairSlots& ps = nb.pairs();
-  ASSERT_EQ(ps.start().size(), n + 1);
-  EXPECT_EQ(2 * ps.entry().size(), nb.entry().size());
-  // Every slot belongs to exactly one particle.
-  std::vector<int> owners(ps.slots(), 0);
-  for (std::uint32_t q : ps.sumSlot())
-    ++owners[q];
-  EXPECT_EQ(std::count(owners.begin(), owners.end(), 1), static_cast<std::ptrdiff_t>(ps.slots()));
-  std::vector<std::vector<std::uint32_t>> sorted(n);
-  for (std::size_t a = 0; a < n; ++a)
-    sorted[a] = nb.sortedOf(a);
-  std::vector<std::uint64_t> seen; // each pair as (low entry, high entry) of the full list
-  std::size_t selfImages = 0, crossBlock = 0, badSlots = 0, missing = 0;
-  for (std::size_t a = 0; a < n; ++a) {
-    const std::size_t block = a / PairSlots::kBlock;
-    const std::uint32_t own = ps.ownSlot(a);
-    badSlots += own < ps.blockBase(block) || own >= ps.blockBase(block + 1);
-    const std::vector<std::uint32_t>& listA = sorted[a];
-    for (std::uint32_t k = ps.start()[a]; k < ps.start()[a + 1]; ++k) {
-      const std::uint32_t e = ps.entry()[k], b = e / 32;
-      const std::uint32_t mirror = static_cast<std::uint32_t>(a * 32 + (26 - e % 32));
-      const std::vector<std::uint32_t>& listB = sorted[b];
-      missing += !std::binary_search(listA.begin(), listA.end(), e) ||
-                 !std::binary_search(listB.begin(), listB.end(), mirror);
-      // the pair's key, the same from either side
-      seen.push_back((static_cast<std::uint64_t>(std::min(e, mirror)) << 32) | std::max(e, mirror));
-      selfImages += b == a;
-      crossBlock += b / PairSlots::kBlock != block;
-      // the partner's slot: in the owner's block and among those the partner sums
-      const std::uint32_t q = ps.slot()[k];
-      const auto first = ps.sumSlot().begin() + ps.sumStart()[b],
-                 last = ps.sumSlot().begin() + ps.sumStart()[b + 1];
-      badSlots += q < ps.blockBase(block) || q >= ps.blockBase(block + 1) ||
-                  std::find(first, last, q) == last;
-    }
-  }
-  std::sort(seen.begin(), seen.end());
-  const std::size_t distinct =
-      static_cast<std::size_t>(std::unique(seen.begin(), seen.end()) - seen.begin());
-  std::printf("%zu listed entries, %zu kept once (%zu with the particle's own image, %zu across "
-              "blocks)\n",
-              nb.entry().size(), ps.entry().size(), selfImages, crossBlock);
-  EXPECT_EQ(distinct, ps.entry().size()); // no pair kept twice
-  EXPECT_EQ(missing, 0u);
-  EXPECT_EQ(badSlots, 0u);
-  EXPECT_GT(selfImages, 0u);
-  EXPECT_GT(crossBlock, 0u);
 }
 
 // Keeping neighbour lists over steps changes nothing: a compressed medium (p = 1 MPa, so
