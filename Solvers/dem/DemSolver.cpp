@@ -1,6 +1,7 @@
 #include "dem/DemSolver.h"
 
 #include "common/Error.h"
+#include "common/OpenMP.h"
 
 #include <Eigen/Geometry>
 
@@ -8,10 +9,6 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace craterkit {
 
@@ -24,46 +21,7 @@ inline Vec at(const std::vector<double>& a, std::size_t i) {
   return Vec(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
 }
 
-int threadCount() {
-#ifdef _OPENMP
-  return omp_get_num_threads();
-#else
-  return 1;
-#endif
-}
-int threadNumber() {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
-
-std::string describe(const ParticleSet& s, std::size_t i) {
-  std::ostringstream out;
-  out << "particle " << i << " (Id " << s.id[i] << ")";
-  return out.str();
-}
-
 } // namespace
-
-void DemParams::validate() const {
-  contact.validate();
-  gravity.validate();
-  for (const Wall& w : walls)
-    w.validate();
-  if (!(dt > 0.0) || !std::isfinite(dt)) {
-    std::ostringstream msg;
-    msg << "TimeStep must be positive and finite (got " << dt << " s)";
-    throw InputError(msg.str());
-  }
-  if (!std::isfinite(skin))
-    throw InputError("the Verlet skin must be finite");
-  if (walls.size() > 64)
-    throw InputError("at most 64 walls are supported");
-  if (!(overlapAbort > 0.0) || !(initialOverlapLimit >= 0.0) || !(minStepsPerCollision > 0.0))
-    throw InputError("overlap and step limits must be positive");
-}
 
 // ---------------------------------------------------------------------------------------------
 DemSolver::DemSolver(const ParticleSet& particles, const DemParams& params)
@@ -84,52 +42,6 @@ void DemSolver::setGravity(const Gravity& gravity) {
 void DemSolver::warn(const std::string& message) {
   if (warnings_.size() < 100)
     warnings_.push_back(message);
-}
-
-void DemSolver::checkInput() const {
-  const ParticleSet& s = state_;
-  if (n_ == 0)
-    throw InputError("the DEM input has no particles");
-  if (n_ > std::numeric_limits<std::uint32_t>::max())
-    throw InputError("the DEM supports at most 2^32 - 1 particles");
-  if (s.position.size() != 3 * n_ || s.velocity.size() != 3 * n_ ||
-      s.angularVelocity.size() != 3 * n_ || s.mass.size() != n_ || s.id.size() != n_)
-    throw InputError("the DEM input arrays have inconsistent lengths");
-  std::size_t badPos = 0, badVel = 0, badRadius = 0, badMass = 0, first = n_;
-  for (std::size_t i = 0; i < n_; ++i) {
-    bool bad = false;
-    for (int k = 0; k < 3; ++k) {
-      if (!std::isfinite(s.position[3 * i + k])) {
-        ++badPos;
-        bad = true;
-        break;
-      }
-    }
-    for (int k = 0; k < 3; ++k)
-      if (!std::isfinite(s.velocity[3 * i + k]) || !std::isfinite(s.angularVelocity[3 * i + k])) {
-        ++badVel;
-        bad = true;
-        break;
-      }
-    if (!(s.radius[i] > 0.0) || !std::isfinite(s.radius[i])) {
-      ++badRadius;
-      bad = true;
-    }
-    if (!(s.mass[i] > 0.0) || !std::isfinite(s.mass[i])) {
-      ++badMass;
-      bad = true;
-    }
-    if (bad && first == n_)
-      first = i;
-  }
-  if (first != n_) {
-    std::ostringstream msg;
-    msg << "bad particles in the DEM input: " << badPos << " with NaN or infinite positions, "
-        << badVel << " with NaN or infinite velocities or spins, " << badRadius
-        << " with non-positive radii, " << badMass
-        << " with non-positive masses (first: " << describe(s, first) << ")";
-    throw InputError(msg.str());
-  }
 }
 
 void DemSolver::initialise(bool computeInitialForces) {
@@ -202,8 +114,8 @@ void DemSolver::initialise(bool computeInitialForces) {
   if (deep > 0 && computeInitialForces) {
     std::ostringstream msg;
     msg << deep << " particle pairs overlap by more than " << 100 * params_.initialOverlapLimit
-        << " % of the smaller radius (worst " << 100 * worst << " %, " << describe(s, wi) << " and "
-        << describe(s, wj) << "): settle or space the input first";
+        << " % of the smaller radius (worst " << 100 * worst << " %, " << describeParticle(s, wi)
+        << " and " << describeParticle(s, wj) << "): settle or space the input first";
     throw InputError(msg.str());
   }
   if (computeInitialForces) {
@@ -538,7 +450,8 @@ void DemSolver::step() {
         if (!std::isfinite(x[3 * i + k])) {
           std::ostringstream msg;
           msg << "the run blew up at step " << step_ + 1 << " (t = " << time_ + dt
-              << " s): " << describe(state_, i) << " has a non-finite position; reduce TimeStep";
+              << " s): " << describeParticle(state_, i)
+              << " has a non-finite position; reduce TimeStep";
           throw std::runtime_error(msg.str());
         }
     buildNeighbourList();
@@ -570,7 +483,7 @@ void DemSolver::step() {
     std::ostringstream msg;
     msg << "the run blew up at step " << step_ << " (t = " << time_ << " s): overlap of "
         << 100 * worstOverlap_ << " % of a radius (limit " << 100 * params_.overlapAbort
-        << " %); fastest is " << describe(state_, culprit) << " at " << fastest
+        << " %); fastest is " << describeParticle(state_, culprit) << " at " << fastest
         << " m/s. Raise NormalStiffness or reduce TimeStep";
     throw std::runtime_error(msg.str());
   }

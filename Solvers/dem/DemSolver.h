@@ -36,6 +36,9 @@
 
 namespace craterkit {
 
+// "particle i (Id n)", for messages that name a particle (dem/DemInput.cpp).
+std::string describeParticle(const ParticleSet& s, std::size_t i);
+
 struct DemParams {
   ContactParams contact;
   std::vector<Wall> walls;
