@@ -59,12 +59,63 @@ void ContactTable::removeParticles(const std::vector<char>& remove,
 
 namespace {
 
+// One row of evaluateContacts. The loop body is this call alone: variables declared in the
+// body of an `omp simd` loop become per-lane arrays, which GCC cannot vectorise when they are
+// arrays themselves (rho[3], the lane's vectors: "not suitable for scatter store"); once this
+// function is inlined its arrays are plain locals that the compiler splits into scalars.
+template <class Law> CK_ALWAYS_INLINE double evaluateRow(const Law& law, const FrictionConstants& f,
+                                                         double dt, const ContactInputs& in,
+                                                         const double* const* hb, double* const* hn,
+                                                         double* res, std::size_t i, std::size_t j,
+                                                         std::size_t b, std::size_t c) {
+  const double *x = in.x, *r = in.r, *m = in.m, *v = in.v, *w = in.w;
+  ContactLane l;
+  const double rho[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1],
+                         x[3 * j + 2] - x[3 * i + 2]};
+  const double d2 = dot3(rho, rho), sum = r[i] + r[j];
+  const double d = std::sqrt(d2);
+  for (int k = 0; k < 3; ++k)
+    l.n[k] = rho[k] / d;
+  l.overlap = sum - d;
+  l.leverP = (r[i] * r[i] - r[j] * r[j] + d2) / (2.0 * d);
+  l.leverN = d - l.leverP;
+  const double wi[3] = {w[3 * i], w[3 * i + 1], w[3 * i + 2]};
+  const double wj[3] = {w[3 * j], w[3 * j + 1], w[3 * j + 2]};
+  double ci[3], cj[3];
+  cross3(l.n, wj, cj);
+  cross3(l.n, wi, ci);
+  // Surface velocities: p's contact point is at +l_p n from its centre, n's at -l_n n.
+  for (int k = 0; k < 3; ++k) {
+    l.u[k] = ((v[3 * j + k] - v[3 * i + k]) + l.leverN * cj[k]) + l.leverP * ci[k];
+    l.omegaRel[k] = wj[k] - wi[k];
+    l.omegaSum[k] = wi[k] + wj[k];
+  }
+  l.reducedMass = m[i] * m[j] / (m[i] + m[j]);
+  l.reducedRadius = r[i] * r[j] / sum;
+  for (int k = 0; k < 3; ++k) {
+    l.spring[k] = hb[k][b];
+    l.rolling[k] = hb[3 + k][b];
+    l.normal[k] = hb[7 + k][b];
+  }
+  l.twisting = hb[6][b];
+  ssdemContactLane(law, f, l, dt);
+  for (int k = 0; k < 3; ++k) {
+    hn[k][c] = l.spring[k];
+    hn[3 + k][c] = l.rolling[k];
+    hn[7 + k][c] = l.normal[k];
+    res[ContactTable::kResultWords * c + k] = l.force[k];
+    res[ContactTable::kResultWords * c + 3 + k] = l.torqueP[k];
+    res[ContactTable::kResultWords * c + 6 + k] = l.torqueN[k];
+  }
+  hn[6][c] = l.twisting;
+  return l.overlap / std::min(r[i], r[j]);
+}
+
 // The loop of evaluateContacts, compiled once per law and per instruction set.
 template <class Law>
 CK_ALWAYS_INLINE double evaluateRows(const Law& law, const FrictionConstants& fc, double dt,
                                      const ContactInputs& in, const ContactTable& before,
                                      ContactTable& now, std::size_t begin, std::size_t end) {
-  const double *x = in.x, *r = in.r, *m = in.m, *v = in.v, *w = in.w;
   const std::uint32_t *pi = now.first.data(), *pj = now.second.data(), *from = now.from.data();
   const double* hb[ContactTable::kHistoryWords];
   double* hn[ContactTable::kHistoryWords];
@@ -76,49 +127,8 @@ CK_ALWAYS_INLINE double evaluateRows(const Law& law, const FrictionConstants& fc
   const FrictionConstants f = fc; // a local copy: no store in the loop can change it
   double worst = 0.0;
 #pragma omp simd reduction(max : worst)
-  for (std::size_t c = begin; c < end; ++c) {
-    const std::size_t i = pi[c], j = pj[c], b = from[c];
-    ContactLane l;
-    const double rho[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1],
-                           x[3 * j + 2] - x[3 * i + 2]};
-    const double d2 = dot3(rho, rho), sum = r[i] + r[j];
-    const double d = std::sqrt(d2);
-    for (int k = 0; k < 3; ++k)
-      l.n[k] = rho[k] / d;
-    l.overlap = sum - d;
-    l.leverP = (r[i] * r[i] - r[j] * r[j] + d2) / (2.0 * d);
-    l.leverN = d - l.leverP;
-    const double wi[3] = {w[3 * i], w[3 * i + 1], w[3 * i + 2]};
-    const double wj[3] = {w[3 * j], w[3 * j + 1], w[3 * j + 2]};
-    double ci[3], cj[3];
-    cross3(l.n, wj, cj);
-    cross3(l.n, wi, ci);
-    // Surface velocities: p's contact point is at +l_p n from its centre, n's at -l_n n.
-    for (int k = 0; k < 3; ++k) {
-      l.u[k] = ((v[3 * j + k] - v[3 * i + k]) + l.leverN * cj[k]) + l.leverP * ci[k];
-      l.omegaRel[k] = wj[k] - wi[k];
-      l.omegaSum[k] = wi[k] + wj[k];
-    }
-    l.reducedMass = m[i] * m[j] / (m[i] + m[j]);
-    l.reducedRadius = r[i] * r[j] / sum;
-    for (int k = 0; k < 3; ++k) {
-      l.spring[k] = hb[k][b];
-      l.rolling[k] = hb[3 + k][b];
-      l.normal[k] = hb[7 + k][b];
-    }
-    l.twisting = hb[6][b];
-    ssdemContactLane(law, f, l, dt);
-    for (int k = 0; k < 3; ++k) {
-      hn[k][c] = l.spring[k];
-      hn[3 + k][c] = l.rolling[k];
-      hn[7 + k][c] = l.normal[k];
-      res[ContactTable::kResultWords * c + k] = l.force[k];
-      res[ContactTable::kResultWords * c + 3 + k] = l.torqueP[k];
-      res[ContactTable::kResultWords * c + 6 + k] = l.torqueN[k];
-    }
-    hn[6][c] = l.twisting;
-    worst = std::max(worst, l.overlap / std::min(r[i], r[j]));
-  }
+  for (std::size_t c = begin; c < end; ++c)
+    worst = std::max(worst, evaluateRow(law, f, dt, in, hb, hn, res, pi[c], pj[c], from[c], c));
   return worst;
 }
 
