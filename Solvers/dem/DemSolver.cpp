@@ -2,6 +2,8 @@
 
 #include "common/Error.h"
 #include "common/OpenMP.h"
+#include "dem/Accelerations.h"
+#include "dem/TouchingPairs.h"
 
 #include <Eigen/Geometry>
 
@@ -214,8 +216,8 @@ void DemSolver::forcePhases(double kick) {
 }
 
 // The pairs in contact now, in the order of the list, become the rows of the next table:
-// each thread tests one contiguous block of pairs (a static schedule hands them out in the
-// order of the thread numbers), then writes its rows after those of the threads before it.
+// each thread tests one contiguous block of pairs, in the order of the thread numbers
+// (dem/TouchingPairs.h), then writes its rows after those of the threads before it.
 void DemSolver::collectContacts() {
   const int threads = threadCount(), me = threadNumber();
 #pragma omp single
@@ -232,30 +234,24 @@ void DemSolver::collectContacts() {
   const std::uint32_t* second = pairs_.second.data();
   char* active = pairs_.active.data();
   std::vector<std::uint32_t>& mine = touching_[static_cast<std::size_t>(me)];
-  mine.clear();
-  const std::size_t pairs = pairs_.size();
-#pragma omp for schedule(static) nowait
-  for (std::size_t k = 0; k < pairs; ++k) {
-    const std::size_t i = first[k], j = second[k];
-    const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1],
-                 d2 = x[3 * j + 2] - x[3 * i + 2];
-    const double dd = (d0 * d0 + d1 * d1) + d2 * d2, sum = r[i] + r[j];
-    if (!(dd >= sum * sum || dd == 0.0))
-      mine.push_back(static_cast<std::uint32_t>(k));
-    else if (active[k]) // separated: its history is not carried
-      active[k] = 0;
-  }
-  touchingStart_[static_cast<std::size_t>(me) + 1] = mine.size();
+  const std::size_t pairs = pairs_.size(), t = static_cast<std::size_t>(threads);
+  const std::size_t begin = pairs * static_cast<std::size_t>(me) / t,
+                    end = pairs * (static_cast<std::size_t>(me) + 1) / t;
+  mine.resize(end - begin + 1);
+  const std::size_t found = findTouchingPairs(x, r, first, second, active, begin, end, mine.data());
+  touchingStart_[static_cast<std::size_t>(me) + 1] = found;
 #pragma omp barrier
 #pragma omp single
   {
-    for (std::size_t t = 0; t < static_cast<std::size_t>(threads); ++t)
-      touchingStart_[t + 1] += touchingStart_[t];
+    for (std::size_t q = 0; q < t; ++q)
+      touchingStart_[q + 1] += touchingStart_[q];
     now.resize(touchingStart_.back());
+    contactsOf_.resize(n_, pairs);
   }
   std::uint32_t* row = pairs_.row.data();
   std::size_t c = touchingStart_[static_cast<std::size_t>(me)];
-  for (const std::uint32_t k : mine) {
+  for (std::size_t q = 0; q < found; ++q) {
+    const std::uint32_t k = mine[q];
     now.first[c] = first[k];
     now.second[c] = second[k];
     now.from[c] = active[k] ? row[k] : static_cast<std::uint32_t>(before.rows);
@@ -279,6 +275,7 @@ void DemSolver::forcePhasesWith(const Law& pairLaw, const Law& wallLaw, double k
   const std::size_t rows = now.rows;
   const double worst = evaluateContacts(pairLaw, fc, params_.dt, in, tables_[current_], now,
                                         rows * me / threads, rows * (me + 1) / threads);
+  contactsOf_.index(now, pairs_.secondStart, n_, me, threads);
 #pragma omp barrier
   gatherForces(wallLaw, fc, kick, worst);
 }
@@ -294,27 +291,22 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
   const double* m = s.mass.data();
   const double* res = tables_[1 - current_].result.data();
   constexpr std::size_t R = ContactTable::kResultWords;
-  const char* active = pairs_.active.data();
-  const std::uint32_t* row = pairs_.row.data();
+  const ParticleContacts& pc = contactsOf_;
   WallContacts& wc = wallContacts_;
+  const Gravity& gravity = params_.gravity;
+  const bool uniform = gravity.type == Gravity::Type::Uniform;
 #pragma omp for schedule(dynamic, 4096) nowait
   for (std::size_t i = 0; i < n_; ++i) {
     Vec f = Vec::Zero(), t = Vec::Zero();
-    // Only the pairs in contact have a row: most listed pairs are not touching, and reading
-    // the flag alone keeps the others out of the cache. Skipping a pair is adding zero.
-    for (std::size_t k = pairs_.firstStart[i]; k < pairs_.firstStart[i + 1]; ++k)
-      if (active[k]) {
-        const double* c = &res[R * row[k]];
-        f += Vec(c[0], c[1], c[2]);
-        t += Vec(c[3], c[4], c[5]);
-      }
-    for (std::size_t q = pairs_.secondStart[i]; q < pairs_.secondStart[i + 1]; ++q) {
-      const std::size_t k = pairs_.secondPair[q];
-      if (active[k]) {
-        const double* c = &res[R * row[k]];
-        f -= Vec(c[0], c[1], c[2]);
-        t += Vec(c[6], c[7], c[8]);
-      }
+    // Only the pairs in contact, in the order of the pair list (dem/ParticleContacts.h).
+    for (std::size_t c = pc.firstBegin[i], e = c + pc.firstCount[i]; c < e; ++c) {
+      f += Vec(res[R * c], res[R * c + 1], res[R * c + 2]);
+      t += Vec(res[R * c + 3], res[R * c + 4], res[R * c + 5]);
+    }
+    for (std::size_t q = pairs_.secondStart[i], e = q + pc.secondCount[i]; q < e; ++q) {
+      const std::size_t c = pc.secondRow[q];
+      f -= Vec(res[R * c], res[R * c + 1], res[R * c + 2]);
+      t += Vec(res[R * c + 6], res[R * c + 7], res[R * c + 8]);
     }
     for (std::size_t e = wc.start[i]; e < wc.start[i + 1]; ++e) {
       double nv[3], lever;
@@ -344,17 +336,18 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
       wc.active[e] = 1;
       worst = std::max(worst, overlap / r[i]);
     }
-    double g[3];
-    params_.gravity.acceleration(&x[3 * i], g);
+    double g[3] = {gravity.vector[0], gravity.vector[1], gravity.vector[2]}, a[3], b[3];
+    if (!uniform) // the common case needs no call
+      gravity.acceleration(&x[3 * i], g);
+    sphereAccelerations(f.data(), t.data(), m[i], inertia_[i], g, a, b);
     double* v = &state_.velocity[3 * i];
     double* w = &state_.angularVelocity[3 * i];
     for (int k = 0; k < 3; ++k) {
-      const double a = f[k] / m[i] + g[k], b = t[k] / inertia_[i];
-      acc_[3 * i + k] = a;
-      alpha_[3 * i + k] = b;
+      acc_[3 * i + k] = a[k];
+      alpha_[3 * i + k] = b[k];
       if (kick != 0.0) {
-        v[k] += kick * a;
-        w[k] += kick * b;
+        v[k] += kick * a[k];
+        w[k] += kick * b[k];
       }
     }
   }

@@ -24,6 +24,7 @@
 #include "dem/ContactModels.h"
 #include "dem/ContactTable.h"
 #include "dem/PairList.h"
+#include "dem/ParticleContacts.h"
 #include "dem/Walls.h"
 
 #include <Eigen/Core>
@@ -140,6 +141,7 @@ private:
   WallContacts wallContacts_;
   std::vector<std::uint64_t> wallNear_; // per particle: walls within r + skin at the last build
   // Per thread: the pairs it found in contact; where each thread's rows start.
+  ParticleContacts contactsOf_; // each particle's rows of the new table
   std::vector<std::vector<std::uint32_t>> touching_;
   std::vector<std::size_t> touchingStart_;
   double moved_ = 0.0; // largest squared displacement since the last build

@@ -1,0 +1,34 @@
+// Each particle's rows of the DEM's contact table (dem/ContactTable.h), rebuilt every step, so
+// that the force gather (pkdgrav SSDEM; Schwartz, Richardson & Michel 2012, §2.3: F_i is the
+// sum over i's contacts) visits only the pairs in contact.
+//
+// A bed lists about ten pairs per particle and has about one in contact: walking the pair
+// list and skipping the others cost a load and a hard-to-predict branch per listed pair.
+// The rows where i is the first member are contiguous (the table is in the order of the pair
+// list); those where it is the second are collected in the slots the pair list keeps for i's
+// pairs as second member (PairList::secondStart), in the order of the table, that is of the
+// first member. Both orders are those of the pair list, so the sums are bit for bit the same.
+#pragma once
+
+#include "dem/ContactTable.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace craterkit {
+
+struct ParticleContacts {
+  // Rows firstBegin[i] .. firstBegin[i] + firstCount[i] - 1 have i as first member; rows
+  // secondRow[secondStart[i] + q], q < secondCount[i], have it as second.
+  std::vector<std::uint32_t> firstBegin, firstCount, secondCount, secondRow;
+
+  // Sizes the arrays for n particles and a pair list of `pairs` slots (once, before index()).
+  void resize(std::size_t n, std::size_t pairs);
+  // Indexes the rows of `table` for the particles [n t / T, n (t + 1) / T) of thread t of T:
+  // called by every thread of a team, which together cover all particles.
+  void index(const ContactTable& table, const std::vector<std::size_t>& secondStart, std::size_t n,
+             std::size_t t, std::size_t T);
+};
+
+} // namespace craterkit
