@@ -295,7 +295,8 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
   WallContacts& wc = wallContacts_;
   const Gravity& gravity = params_.gravity;
   const bool uniform = gravity.type == Gravity::Type::Uniform;
-#pragma omp for schedule(dynamic, 4096) nowait
+  // Static: each thread gathers the particles it drifted, whose data its cache holds.
+#pragma omp for schedule(static) nowait
   for (std::size_t i = 0; i < n_; ++i) {
     Vec f = Vec::Zero(), t = Vec::Zero();
     // Only the pairs in contact, in the order of the pair list (dem/ParticleContacts.h).
