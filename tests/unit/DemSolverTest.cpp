@@ -4,6 +4,7 @@
 #include "common/Error.h"
 #include "common/Random.h"
 #include "dem/DemRun.h"
+#include "dem/ParticleContacts.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -338,6 +339,63 @@ TEST(DemNeighbours, ContactsMatchBruteForceOracle) {
       solver.step();
   }
   EXPECT_GT(solver.neighbourBuilds(), 1u);
+}
+
+// The force gather sums each particle's contacts in the order of the pair list (first-member
+// rows by second member, then second-member rows by first member), which keeps the sums
+// bit-identical for any thread count: the per-particle index must list every row of the table
+// once, in that order, however many threads build it.
+TEST(DemNeighbours, ParticleContactsListEveryRowInListOrder) {
+  Random rng(5);
+  const std::size_t n = 300;
+  // A sorted half list of random pairs, a third of them in contact (the table's rows).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> listed;
+  for (std::size_t e = 0; e < 2000; ++e) {
+    const auto a = static_cast<std::uint32_t>(rng.uniform(0, n - 1));
+    const auto b = static_cast<std::uint32_t>(rng.uniform(a + 1, n));
+    listed.emplace_back(a, std::min<std::uint32_t>(b, n - 1));
+  }
+  listed.erase(std::remove_if(listed.begin(), listed.end(),
+                              [](const auto& q) { return q.first >= q.second; }),
+               listed.end());
+  std::sort(listed.begin(), listed.end());
+  listed.erase(std::unique(listed.begin(), listed.end()), listed.end());
+  std::vector<std::size_t> secondStart(n + 1, 0);
+  for (const auto& q : listed)
+    ++secondStart[q.second + 1];
+  for (std::size_t i = 0; i < n; ++i)
+    secondStart[i + 1] += secondStart[i];
+  ContactTable table;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> rows;
+  for (const auto& q : listed)
+    if (rng.uniform() < 1.0 / 3.0)
+      rows.push_back(q);
+  table.resize(rows.size());
+  for (std::size_t c = 0; c < rows.size(); ++c) {
+    table.first[c] = rows[c].first;
+    table.second[c] = rows[c].second;
+  }
+  for (std::size_t threads : {1u, 2u, 3u, 7u}) {
+    ParticleContacts pc;
+    pc.resize(n, listed.size());
+    for (std::size_t t = 0; t < threads; ++t)
+      pc.index(table, secondStart, n, t, threads);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::vector<std::size_t> firstWant, secondWant, firstGot, secondGot;
+      for (std::size_t c = 0; c < rows.size(); ++c) {
+        if (rows[c].first == i)
+          firstWant.push_back(c);
+        if (rows[c].second == i)
+          secondWant.push_back(c);
+      }
+      for (std::size_t q = 0; q < pc.firstCount[i]; ++q)
+        firstGot.push_back(pc.firstBegin[i] + q);
+      for (std::size_t q = 0; q < pc.secondCount[i]; ++q)
+        secondGot.push_back(pc.secondRow[secondStart[i] + q]);
+      EXPECT_EQ(firstGot, firstWant) << "particle " << i << ", " << threads << " threads";
+      EXPECT_EQ(secondGot, secondWant) << "particle " << i << ", " << threads << " threads";
+    }
+  }
 }
 
 namespace {
