@@ -57,6 +57,11 @@ struct SphParams {
   double domainRadius = 0.0; // m
   double domainCentre[3] = {0, 0, 0};
   double lateStageSoundSpeed = 100.0; // m/s
+  // The pressure, deviatoric stress and density of rigid particles: Extrapolated from the
+  // adjacent material (Adami, Hu & Adams 2012; sph/WallBoundary.h), or Dynamic, from their own
+  // continuity density (dynamic boundary particles, Crespo et al. 2007), which lets a dilating
+  // layer slide on the wall (docs/validation.md, "The infinite slope, analysed").
+  enum class Walls { Extrapolated, Dynamic } walls = Walls::Extrapolated;
   void validate() const;
 };
 

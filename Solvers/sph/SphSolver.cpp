@@ -4,6 +4,7 @@
 #include "sph/Kernels.h"
 #include "sph/SimdClones.h"
 #include "sph/Strength.h"
+#include "sph/WallBoundary.h"
 
 #include <omp.h>
 
@@ -73,6 +74,8 @@ void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>&
   if (par_.summationDensity)
     densityBySummation(s);
   eosAndYield(s, p, c);
+  if (par_.walls == SphParams::Walls::Extrapolated)
+    extrapolateWalls(s, p, c, par_, nb_);
 }
 
 void SphSolver::eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c) const {

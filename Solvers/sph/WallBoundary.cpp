@@ -1,0 +1,144 @@
+#include "sph/WallBoundary.h"
+
+#include "sph/Kernels.h"
+#include "sph/NeighbourList.h"
+#include "sph/SphParams.h"
+#include "sph/SphState.h"
+#include "sph/Strength.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace craterkit {
+
+namespace {
+
+// The body force per unit mass at x: uniform gravity plus the point mass (as the solver's).
+void bodyForce(const SphParams& par, const double* x, double g[3]) {
+  for (int k = 0; k < 3; ++k)
+    g[k] = par.gravity[k];
+  if (par.pointMassGM > 0.0) {
+    const double dx = x[0] - par.pointMassAt[0], dy = x[1] - par.pointMassAt[1],
+                 dz = x[2] - par.pointMassAt[2];
+    const double r2 = dx * dx + dy * dy + dz * dz;
+    if (r2 > 0.0) {
+      const double k = -par.pointMassGM / (r2 * std::sqrt(r2));
+      g[0] += k * dx, g[1] += k * dy, g[2] += k * dz;
+    }
+  }
+}
+
+// The bulk density at which the material's law gives the bulk pressure P (Adami Eq. 28): the
+// reference ρ0/α where P is at or below the law's pressure there (a wall's density is not
+// lowered by tension), else the root above it, where p rises with ρ for every law with a
+// reference density: Newton's method from the present density (a step away from the root, so
+// two or three iterations), bisection should it stall. `rho` for a law without one.
+double densityAtPressure(const EquationOfState& eos, double alpha, double u, double P, double rho) {
+  const double rho0 = eos.referenceDensity();
+  if (!(rho0 > 0.0))
+    return rho;
+  const double lo0 = rho0 / alpha;
+  auto f = [&](double r) { return eos.pressure(alpha * r, u) / alpha - P; };
+  if (!(f(lo0) < 0.0))
+    return lo0;
+  double x = std::max(rho, lo0);
+  for (int k = 0; k < 20; ++k) {
+    const double fx = f(x), dr = 1e-7 * x, slope = (f(x + dr) - fx) / dr;
+    if (!(slope > 0.0))
+      break;
+    const double next = std::max(lo0, x - fx / slope);
+    if (std::abs(next - x) <= 1e-12 * x)
+      return next;
+    x = next;
+  }
+  double lo = lo0, hi = 1.01 * lo0;
+  for (int k = 0; k < 60 && f(hi) < 0.0; ++k)
+    lo = hi, hi = lo0 + 2.0 * (hi - lo0);
+  for (int k = 0; k < 60 && hi - lo > 1e-12 * lo0; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) < 0.0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+template <class K> void extrapolate(SphState& s, std::vector<double>& p, std::vector<double>& c,
+                                    const SphParams& par, const NeighbourList& nb,
+                                    const std::vector<char>& rigid) {
+  const std::size_t n = s.size();
+  std::vector<Rheology> rh;
+  for (const Material& m : par.materials)
+    rh.emplace_back(m);
+  double period[3];
+  for (int k = 0; k < 3; ++k)
+    period[k] = par.periodic[k] ? par.boxHi[k] - par.boxLo[k] : 0.0;
+    // Walls read only non-rigid particles and write only themselves: no race.
+#pragma omp parallel for schedule(dynamic, 64) if (n >= 512)
+  for (std::size_t w = 0; w < n; ++w) {
+    const std::size_t mw = static_cast<std::size_t>(s.material[w]);
+    if (!rigid[mw])
+      continue;
+    const double* xw = &s.x[3 * w];
+    double g[3];
+    bodyForce(par, xw, g); // minus a_w = 0
+    double sumW = 0.0, sumP = 0.0, sumRhoR[3] = {0, 0, 0};
+    double minP = 0.0;
+    for (std::uint32_t e = nb.start()[w]; e < nb.start()[w + 1]; ++e) {
+      const std::uint32_t code = nb.entry()[e];
+      const std::size_t f = code / 32;
+      if (rigid[static_cast<std::size_t>(s.material[f])])
+        continue;
+      double r[3];
+      for (int k = 0; k < 3; ++k)
+        r[k] = xw[k] - s.x[3 * f + k];
+      if (code % 32 != kNoShift) {
+        const int sh[3] = {static_cast<int>(code % 32 % 3) - 1,
+                           static_cast<int>(code % 32 / 3 % 3) - 1,
+                           static_cast<int>(code % 32 / 9) - 1};
+        for (int k = 0; k < 3; ++k)
+          r[k] -= sh[k] * period[k];
+      }
+      const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+      const double hb = 0.5 * (s.h[w] + s.h[f]);
+      if (!(r2 < hb * hb))
+        continue;
+      const double W = K::W(std::sqrt(r2), hb);
+      sumW += W;
+      sumP += p[f] * W;
+      minP = std::min(minP, p[f]);
+      for (int k = 0; k < 3; ++k)
+        sumRhoR[k] += s.rho[f] * r[k] * W;
+    }
+    double* Sw = &s.S[6 * w];
+    if (!(sumW > 0.0)) {
+      p[w] = 0.0;
+      for (int k = 0; k < 6; ++k)
+        Sw[k] = 0.0;
+      continue;
+    }
+    const double Pw = (sumP + g[0] * sumRhoR[0] + g[1] * sumRhoR[1] + g[2] * sumRhoR[2]) / sumW;
+    // The wall's own deviatoric stress (its Hooke rate against the adjacent flow) within its
+    // material's yield surface at the extrapolated pressure.
+    p[w] = limitStress(rh[mw], s.damage[w], std::max(Pw, minP), Sw);
+    const Material& mat = par.materials[mw];
+    s.rho[w] = densityAtPressure(mat.eos, s.alpha[w], s.u[w], p[w], s.rho[w]);
+    c[w] = signalSpeed(rh[mw], mat.eos.soundSpeed(s.alpha[w] * s.rho[w], s.u[w]), s.rho[w]);
+  }
+}
+
+} // namespace
+
+void extrapolateWalls(SphState& s, std::vector<double>& p, std::vector<double>& c,
+                      const SphParams& par, const NeighbourList& nb) {
+  std::vector<char> rigid(par.materials.size());
+  bool any = false;
+  for (std::size_t m = 0; m < rigid.size(); ++m)
+    any = any || (rigid[m] = par.materials[m].rigid);
+  if (!any)
+    return;
+  if (par.kernel == SphParams::Kernel::WendlandC2)
+    extrapolate<WendlandC2>(s, p, c, par, nb, rigid);
+  else
+    extrapolate<CubicSpline>(s, p, c, par, nb, rigid);
+}
+
+} // namespace craterkit
