@@ -4,7 +4,6 @@
 #include "sph/Kernels.h"
 #include "sph/SimdClones.h"
 #include "sph/Strength.h"
-#include "sph/WallBoundary.h"
 
 #include <omp.h>
 
@@ -75,7 +74,7 @@ void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>&
     densityBySummation(s);
   eosAndYield(s, p, c);
   if (par_.walls == SphParams::Walls::Extrapolated)
-    extrapolateWalls(s, p, c, par_, nb_);
+    walls_.apply(s, p, c, par_, nb_);
 }
 
 void SphSolver::eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c) const {

@@ -62,40 +62,35 @@ double densityAtPressure(const EquationOfState& eos, double alpha, double u, dou
 }
 
 template <class K> void extrapolate(SphState& s, std::vector<double>& p, std::vector<double>& c,
-                                    const SphParams& par, const NeighbourList& nb,
-                                    const std::vector<char>& rigid) {
-  const std::size_t n = s.size();
+                                    const SphParams& par, const std::vector<std::uint32_t>& walls,
+                                    const std::vector<std::uint32_t>& start,
+                                    const std::vector<std::uint32_t>& entry) {
   std::vector<Rheology> rh;
   for (const Material& m : par.materials)
     rh.emplace_back(m);
   double period[3];
   for (int k = 0; k < 3; ++k)
     period[k] = par.periodic[k] ? par.boxHi[k] - par.boxLo[k] : 0.0;
-    // Walls read only non-rigid particles and write only themselves: no race.
-#pragma omp parallel for schedule(dynamic, 64) if (n >= 512)
-  for (std::size_t w = 0; w < n; ++w) {
-    const std::size_t mw = static_cast<std::size_t>(s.material[w]);
-    if (!rigid[mw])
-      continue;
+  const std::size_t nw = walls.size();
+  // Walls read only non-rigid particles and write only themselves: no race.
+#pragma omp parallel for schedule(dynamic, 64) if (nw >= 256)
+  for (std::size_t k = 0; k < nw; ++k) {
+    const std::size_t w = walls[k], mw = static_cast<std::size_t>(s.material[w]);
     const double* xw = &s.x[3 * w];
     double g[3];
     bodyForce(par, xw, g); // minus a_w = 0
-    double sumW = 0.0, sumP = 0.0, sumRhoR[3] = {0, 0, 0};
-    double minP = 0.0;
-    for (std::uint32_t e = nb.start()[w]; e < nb.start()[w + 1]; ++e) {
-      const std::uint32_t code = nb.entry()[e];
+    double sumW = 0.0, sumP = 0.0, sumRhoR[3] = {0, 0, 0}, minP = 0.0;
+    for (std::uint32_t e = start[k]; e < start[k + 1]; ++e) {
+      const std::uint32_t code = entry[e];
       const std::size_t f = code / 32;
-      if (rigid[static_cast<std::size_t>(s.material[f])])
-        continue;
       double r[3];
-      for (int k = 0; k < 3; ++k)
-        r[k] = xw[k] - s.x[3 * f + k];
+      for (int a = 0; a < 3; ++a)
+        r[a] = xw[a] - s.x[3 * f + a];
       if (code % 32 != kNoShift) {
-        const int sh[3] = {static_cast<int>(code % 32 % 3) - 1,
-                           static_cast<int>(code % 32 / 3 % 3) - 1,
-                           static_cast<int>(code % 32 / 9) - 1};
-        for (int k = 0; k < 3; ++k)
-          r[k] -= sh[k] * period[k];
+        const std::uint32_t sh = code % 32;
+        r[0] -= (static_cast<int>(sh % 3) - 1) * period[0];
+        r[1] -= (static_cast<int>(sh / 3 % 3) - 1) * period[1];
+        r[2] -= (static_cast<int>(sh / 9) - 1) * period[2];
       }
       const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
       const double hb = 0.5 * (s.h[w] + s.h[f]);
@@ -105,20 +100,15 @@ template <class K> void extrapolate(SphState& s, std::vector<double>& p, std::ve
       sumW += W;
       sumP += p[f] * W;
       minP = std::min(minP, p[f]);
-      for (int k = 0; k < 3; ++k)
-        sumRhoR[k] += s.rho[f] * r[k] * W;
+      for (int a = 0; a < 3; ++a)
+        sumRhoR[a] += s.rho[f] * r[a] * W;
     }
-    double* Sw = &s.S[6 * w];
-    if (!(sumW > 0.0)) {
-      p[w] = 0.0;
-      for (int k = 0; k < 6; ++k)
-        Sw[k] = 0.0;
-      continue;
-    }
+    if (!(sumW > 0.0))
+      continue; // no neighbour inside the support now: keeps what its own state gives
     const double Pw = (sumP + g[0] * sumRhoR[0] + g[1] * sumRhoR[1] + g[2] * sumRhoR[2]) / sumW;
     // The wall's own deviatoric stress (its Hooke rate against the adjacent flow) within its
     // material's yield surface at the extrapolated pressure.
-    p[w] = limitStress(rh[mw], s.damage[w], std::max(Pw, minP), Sw);
+    p[w] = limitStress(rh[mw], s.damage[w], std::max(Pw, minP), &s.S[6 * w]);
     const Material& mat = par.materials[mw];
     s.rho[w] = densityAtPressure(mat.eos, s.alpha[w], s.u[w], p[w], s.rho[w]);
     c[w] = signalSpeed(rh[mw], mat.eos.soundSpeed(s.alpha[w] * s.rho[w], s.u[w]), s.rho[w]);
@@ -127,18 +117,40 @@ template <class K> void extrapolate(SphState& s, std::vector<double>& p, std::ve
 
 } // namespace
 
-void extrapolateWalls(SphState& s, std::vector<double>& p, std::vector<double>& c,
-                      const SphParams& par, const NeighbourList& nb) {
+void WallBoundary::compact(const SphState& s, const std::vector<char>& rigid,
+                           const NeighbourList& nb) {
+  wall_.clear(), start_.assign(1, 0), entry_.clear();
+  for (std::size_t w = 0; w < s.size(); ++w) {
+    if (!rigid[static_cast<std::size_t>(s.material[w])])
+      continue;
+    const std::size_t before = entry_.size();
+    for (std::uint32_t e = nb.start()[w]; e < nb.start()[w + 1]; ++e) {
+      const std::uint32_t code = nb.entry()[e];
+      if (!rigid[static_cast<std::size_t>(s.material[code / 32])])
+        entry_.push_back(code);
+    }
+    if (entry_.size() > before) {
+      wall_.push_back(static_cast<std::uint32_t>(w));
+      start_.push_back(static_cast<std::uint32_t>(entry_.size()));
+    }
+  }
+  builds_ = nb.builds(), size_ = s.size();
+}
+
+void WallBoundary::apply(SphState& s, std::vector<double>& p, std::vector<double>& c,
+                         const SphParams& par, const NeighbourList& nb) {
   std::vector<char> rigid(par.materials.size());
   bool any = false;
   for (std::size_t m = 0; m < rigid.size(); ++m)
     any = any || (rigid[m] = par.materials[m].rigid);
   if (!any)
     return;
+  if (nb.builds() != builds_ || s.size() != size_)
+    compact(s, rigid, nb);
   if (par.kernel == SphParams::Kernel::WendlandC2)
-    extrapolate<WendlandC2>(s, p, c, par, nb, rigid);
+    extrapolate<WendlandC2>(s, p, c, par, wall_, start_, entry_);
   else
-    extrapolate<CubicSpline>(s, p, c, par, nb, rigid);
+    extrapolate<CubicSpline>(s, p, c, par, wall_, start_, entry_);
 }
 
 } // namespace craterkit

@@ -6,8 +6,9 @@
 //   p_w = (Σ_f p_f W_wf + (g_w − a_w) · Σ_f ρ_f r_wf W_wf) / Σ_f W_wf      (Adami Eq. 27)
 // g_w the body force at the wall (uniform gravity plus the point mass), a_w = 0 (rigid
 // particles are at rest). The extrapolation is exact for a hydrostatic (linear) pressure
-// field. p_w is not taken below the most tensile pressure of its neighbours, nor below 0 when
-// they hold none, so the wall never pulls a cohesionless material (as PySPH's
+// field; a wall with no such neighbour inside the support keeps what its own state gives (no
+// one reads it). p_w is not taken below the most tensile pressure of its neighbours, nor below 0
+// when they hold none, so the wall never pulls a cohesionless material (as PySPH's
 // ClampWallPressure, which clamps at 0).
 //   Density (Adami Eq. 28): ρ_w from the inverse of the wall material's equation of state,
 // p(α ρ_w, u_w)/α = p_w, so that the wall's p/ρ² and volume m/ρ match its pressure instead of
@@ -28,6 +29,8 @@
 // load, and a dilating layer lowers the floor's density and pressure to zero.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace craterkit {
@@ -36,10 +39,22 @@ struct SphState;
 struct SphParams;
 class NeighbourList;
 
-// Sets p, the deviatoric stress S, the density and the signal speed c of every rigid particle of
-// s from its neighbours (nb: the current list) as above. Reads only non-rigid particles, so the
-// order of the walls does not matter.
-void extrapolateWalls(SphState& s, std::vector<double>& p, std::vector<double>& c,
-                      const SphParams& par, const NeighbourList& nb);
+class WallBoundary {
+public:
+  // Sets p, the density and the signal speed c of every rigid particle of s with a non-rigid
+  // neighbour, and limits its deviatoric stress S, as above (nb: the current list). Reads only
+  // non-rigid particles, so the order of the walls does not matter. Walls without such
+  // neighbours keep what their own state gives: no one reads them.
+  void apply(SphState& s, std::vector<double>& p, std::vector<double>& c, const SphParams& par,
+             const NeighbourList& nb);
+
+private:
+  // The walls with non-rigid neighbours and those neighbours' list entries (index * 32 + image
+  // code), compacted once per list: most of a container's particles lie deeper than one support
+  // from its face, and most entries of a wall near it are walls.
+  void compact(const SphState& s, const std::vector<char>& rigid, const NeighbourList& nb);
+  std::size_t builds_ = 0, size_ = 0; // the list (its build count) and state compacted
+  std::vector<std::uint32_t> wall_, start_, entry_;
+};
 
 } // namespace craterkit
