@@ -24,8 +24,8 @@ struct Material {
   double crushPs = 1e9;        // Pa, pressure at which the pores are closed (α = 1)
   double weibullK = 0.0;       // m⁻³, Grady–Kipp flaw density n(ε) = k ε^m (0: no fracture)
   double weibullM = 9.0;       // Weibull exponent m
-  bool rigid = false;          // boundary particles: fixed in place, their density and stress
-                               // evolve (dynamic boundary particles, Crespo et al. 2007)
+  bool rigid = false;          // boundary particles: fixed in place, their pressure and stress
+                               // taken from the adjacent material (SphParams::walls)
   std::string source;          // where the values come from
 
   // The late stage (sph/Eos.h): a material whose law has a late-stage form takes the linear law

@@ -57,6 +57,12 @@ struct SphParams {
   double domainRadius = 0.0; // m
   double domainCentre[3] = {0, 0, 0};
   double lateStageSoundSpeed = 100.0; // m/s
+  // The pressure, deviatoric stress and density of rigid particles: Extrapolated from the
+  // adjacent material (Adami, Hu & Adams 2012; sph/WallBoundary.h), or Dynamic, from their own
+  // continuity density (dynamic boundary particles, Crespo et al. 2007; the rule before
+  // 2026-12-05), whose pressure falls to zero under a dilating layer and alternates from row to
+  // row in a column at rest (docs/validation.md, "The infinite slope, analysed").
+  enum class Walls { Extrapolated, Dynamic } walls = Walls::Extrapolated;
   void validate() const;
 };
 

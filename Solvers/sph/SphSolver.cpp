@@ -73,6 +73,8 @@ void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>&
   if (par_.summationDensity)
     densityBySummation(s);
   eosAndYield(s, p, c);
+  if (par_.walls == SphParams::Walls::Extrapolated)
+    walls_.apply(s, p, c, par_, nb_);
 }
 
 void SphSolver::eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c) const {

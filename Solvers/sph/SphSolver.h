@@ -20,6 +20,7 @@
 #include "sph/NeighbourList.h"
 #include "sph/SphParams.h"
 #include "sph/SphState.h"
+#include "sph/WallBoundary.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -95,7 +96,8 @@ private:
   SphState mid_; // the predictor stage (members: reused, not reallocated, each step)
   Rates k2_;
   std::vector<double> pm_, cm_;
-  std::vector<double> p_, c_; // pressure and sound speed of the current state
+  std::vector<double> p_, c_;  // pressure and sound speed of the current state
+  mutable WallBoundary walls_; // rigid particles' pressure (its cache follows the list)
   double time_ = 0.0, stableStep_ = 0.0;
   std::size_t steps_ = 0;
   bool late_ = false;
