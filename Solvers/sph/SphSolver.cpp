@@ -2,6 +2,7 @@
 
 #include "common/Error.h"
 #include "sph/Kernels.h"
+#include "sph/PairTerms.h"
 #include "sph/SimdClones.h"
 #include "sph/Strength.h"
 
@@ -139,46 +140,16 @@ double SphSolver::smoothingLength(const SphState& s, std::size_t i) const {
 }
 
 namespace {
-// What a particle's neighbours read of it, packed in one place (144 bytes) instead of eight
-// scattered arrays.
-struct Packed {
-  double x[3], v[3];
-  double h, rho, m, vol; // vol = m/ρ
-  double pr;             // p/ρ²
-  double c;
-  double s[6]; // S/ρ²
-};
-// Per-thread buffers of one particle's interacting neighbours.
-struct Scratch {
-  // 64-bit like the doubles: with 32-bit indices the compiler runs the pair loop sixteen wide,
-  // two vectors per sum, which spills the sums to memory and leaves up to 15 pairs to scalar code.
-  std::vector<std::uint64_t> idx;
-  std::vector<double> rx, ry, rz, r2;
-  void resize(std::size_t n) {
-    idx.resize(n), rx.resize(n), ry.resize(n), rz.resize(n), r2.resize(n);
-  }
-};
-
-// The pair stream is padded to a multiple of the AVX-512 vector's eight doubles.
-constexpr std::size_t kLanes = 8;
-
-// What one particle's neighbours add up to (§2.2, §2.3).
-struct PairSums {
-  double acc[3], dr, de, grad[9], xs[3], sig;
-};
-
-struct PairConstants {
-  double av, bv, xsph, stressOn, gradOn;
-  bool periodic;
-  double period[3]; // box lengths of the periodic axes
-};
+using Packed = PairRecord;
+using Scratch = PairScratch;
+constexpr std::size_t kLanes = kPairLanes;
 
 // Pass 1 of the pair terms: the entries of `entries` (index * 32 + image code) inside the pair's
 // support, with their separations, packed into w and padded to whole vectors; returns their
 // number with the padding. A function of its own so that its few pointers stay in registers
 // (inside pairSums they were reloaded from the stack at every entry).
 template <bool Periodic>
-std::size_t supportStream(const Packed* Pp, std::uint32_t self, const std::uint32_t* entries,
+std::size_t supportStream(const PairPosition* Xp, std::uint32_t self, const std::uint32_t* entries,
                           std::uint32_t count, Scratch& w, const PairConstants& pc) {
   if (w.idx.size() < count + kLanes)
     w.resize(count + kLanes);
@@ -187,12 +158,12 @@ std::size_t supportStream(const Packed* Pp, std::uint32_t self, const std::uint3
   double* __restrict wy = w.ry.data();
   double* __restrict wz = w.rz.data();
   double* __restrict w2 = w.r2.data();
-  const Packed& A = Pp[self];
+  const PairPosition& A = Xp[self];
   const double ax = A.x[0], ay = A.x[1], az = A.x[2], ah = A.h;
   std::size_t m = 0;
   for (std::uint32_t k = 0; k < count; ++k) {
     const std::uint32_t code = entries[k];
-    const Packed& B = Pp[code >> 5];
+    const PairPosition& B = Xp[code >> 5];
     double rx = ax - B.x[0], ry = ay - B.x[1], rz = az - B.x[2];
     if (Periodic && (code & 31u) != kNoShift) {
       const std::uint32_t c = code & 31u;
@@ -296,17 +267,21 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
   std::vector<char> rigidMat(par_.materials.size());
   for (std::size_t m = 0; m < rigidMat.size(); ++m)
     rigidMat[m] = par_.materials[m].rigid;
-  static thread_local std::vector<Packed>
-      P; // reused: no allocation in the step loop; workers use Pp
+  // reused: no allocation in the step loop; workers use Pp and Xp
+  static thread_local std::vector<Packed> P;
+  static thread_local std::vector<PairPosition> X;
   P.resize(n);
+  X.resize(n);
   Packed* const Pw = P.data();
+  PairPosition* const Xw = X.data();
   bool anyStress = false;
 #pragma omp parallel for schedule(static) reduction(|| : anyStress) if (n >= 4096)
   for (std::size_t i = 0; i < n; ++i) {
     Packed& q = Pw[i];
     const double ir2 = 1.0 / (s.rho[i] * s.rho[i]);
     for (int k = 0; k < 3; ++k)
-      q.x[k] = s.x[3 * i + k], q.v[k] = s.v[3 * i + k];
+      Xw[i].x[k] = s.x[3 * i + k], q.v[k] = s.v[3 * i + k];
+    Xw[i].h = s.h[i];
     q.h = s.h[i], q.rho = s.rho[i], q.m = s.mass[i], q.vol = s.mass[i] / s.rho[i];
     q.pr = p[i] * ir2;
     q.c = c[i];
@@ -317,6 +292,8 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
     anyStress = anyStress || G[static_cast<std::size_t>(s.material[i])] > 0.0;
   }
   const Packed* Pp = Pw;
+  const PairPosition* Xp = Xw;
+  const bool wide = wideKernelAvailable();
   static thread_local std::vector<Scratch>
       scratchOfCaller; // the calling thread's; workers use the pointer
   scratchOfCaller.resize(static_cast<std::size_t>(omp_get_max_threads()));
@@ -344,14 +321,16 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
     Scratch& w = scratch[omp_get_thread_num()];
     const std::uint32_t* entries = nb_.entry().data() + first;
     const std::uint32_t count = nb_.start()[a + 1] - first, self = static_cast<std::uint32_t>(a);
-    const std::size_t m = pc.periodic ? supportStream<true>(Pp, self, entries, count, w, pc)
-                                      : supportStream<false>(Pp, self, entries, count, w, pc);
-    const PairSums sums = pairSums<K, Xsph>(Pp, A, m, w, pcA);
+    const std::size_t m = pc.periodic ? supportStream<true>(Xp, self, entries, count, w, pc)
+                          : wide      ? supportStreamWide(Xp, self, entries, count, w)
+                                      : supportStream<false>(Xp, self, entries, count, w, pc);
+    const PairSums sums =
+        wide ? pairSumsWide<K, Xsph>(Pp, A, m, w, pcA) : pairSums<K, Xsph>(Pp, A, m, w, pcA);
     const double* acc = sums.acc;
     const double* xs = sums.xs;
     const double* grad = sums.grad;
     signal = std::max(signal, sums.sig);
-    const double* xa = A.x;
+    const double* xa = Xp[a].x;
     const double* Sa = &s.S[6 * a];
     double ext[3] = {par_.gravity[0], par_.gravity[1], par_.gravity[2]};
     if (par_.pointMassGM > 0.0) {
