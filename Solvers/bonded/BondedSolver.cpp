@@ -216,20 +216,24 @@ void BondedSolver::buildPairs() {
   const long nc = static_cast<long>(chunks);
 #pragma omp parallel
   {
-    std::vector<Entry> list;
+    std::vector<Entry> list, chunk;
 #pragma omp for schedule(dynamic)
     for (long c = 0; c < nc; ++c) {
+      // Filled in a private vector (given the chunk's buffer): the threads' vector headers in
+      // `staged` share cache lines.
+      chunk.swap(staged[c]);
       const std::size_t b0 = static_cast<std::size_t>(c) * kChunkBlocks;
       for (std::size_t b = b0; b < std::min(blocks, b0 + kChunkBlocks); ++b) {
         std::size_t depth = 0;
         for (std::size_t i = b * kLanes; i < std::min(n, (b + 1) * kLanes); ++i) {
           collect(i, list);
           count[i] = static_cast<std::uint32_t>(list.size());
-          staged[c].insert(staged[c].end(), list.begin(), list.end());
+          chunk.insert(chunk.end(), list.begin(), list.end());
           depth = std::max(depth, list.size());
         }
         blockStart_[b + 1] = depth * kLanes;
       }
+      staged[c].swap(chunk);
     }
   }
   for (std::size_t b = 0; b < blocks; ++b)
