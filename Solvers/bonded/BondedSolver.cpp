@@ -1,5 +1,7 @@
 #include "bonded/BondedSolver.h"
 
+#include "bonded/BondedForcesAvx512.h"
+
 #include "common/AtomicWrite.h"
 #include "common/CellList.h"
 #include "common/Error.h"
@@ -36,30 +38,17 @@ template <class F> double chunkedSum(std::size_t n, F&& f) {
   return total;
 }
 
-// List entries' rest lengths: no intact bond; a bond the current pass found beyond r_cut.
-constexpr double kNoBond = std::numeric_limits<double>::infinity();
-constexpr double kBreaking = -1.0;
-
-struct BlockPass {
-  const double* x;
-  std::size_t n;
-  const std::size_t* blockStart;
-  const std::uint32_t* partner;
-  double* rest;
-  std::uint32_t* breaks;
-  double* force;
-  double* v; // null: forces only; else the second half kick too
-  const double* m;
-  double halfStep;
-  ws2017::PairTerms terms;
-  double rCut2;
-};
+using bondedpass::BlockPass;
+using bondedpass::kBreaking;
+using bondedpass::kNoBond;
 
 // The forces on the particles of blocks [b0, b1): eight particles side by side, each lane
 // summing its particle's entries in list order. An intact bond beyond r_cut is marked
 // kBreaking, contributes its repulsion only, and is counted in its block. Cloned for AVX-512
 // (sph/SimdClones.h), where the lane loop is one instruction wide; the two differ by rounding.
-constexpr std::size_t kPassLanes = 8;
+// Where the processor has AVX-512, bondedpass::blockForcesAvx512 runs instead (the clone's
+// operations with 512-bit registers and loads; the same bits).
+constexpr std::size_t kPassLanes = bondedpass::kLanes;
 
 CK_SIMD_CLONES long blockForces(const BlockPass& p, std::size_t b0, std::size_t b1) {
   constexpr std::size_t L = kPassLanes;
@@ -190,7 +179,7 @@ void BondedSolver::buildPairs() {
   const std::size_t n = sys_.size(), blocks = (n + kLanes - 1) / kLanes;
   const double* x = sys_.positions.data();
   const double reach = sys_.law.rEq() + params_.skin * sys_.law.sigma, reach2 = reach * reach;
-  CellList cells;
+  CellList& cells = cells_;
   cells.build(x, n, reach);
   using Entry = std::pair<std::uint32_t, double>;
   auto collect = [&](std::size_t i, std::vector<Entry>& out) {
@@ -215,26 +204,36 @@ void BondedSolver::buildPairs() {
   // once every block's depth (its longest list) is known.
   constexpr std::size_t kChunkBlocks = 256;
   const std::size_t chunks = (blocks + kChunkBlocks - 1) / kChunkBlocks;
-  std::vector<std::vector<Entry>> staged(chunks);
-  std::vector<std::uint32_t> count(n);
+  // Kept from build to build with their capacity: fresh buffers here cost their page faults and
+  // the staged lists' regrowth at every build.
+  std::vector<std::vector<Entry>>& staged = staged_;
+  staged.resize(chunks);
+  for (std::vector<Entry>& s : staged)
+    s.clear();
+  std::vector<std::uint32_t>& count = listed_;
+  count.resize(n);
   blockStart_.assign(blocks + 1, 0);
   const long nc = static_cast<long>(chunks);
 #pragma omp parallel
   {
-    std::vector<Entry> list;
+    std::vector<Entry> list, chunk;
 #pragma omp for schedule(dynamic)
     for (long c = 0; c < nc; ++c) {
+      // Filled in a private vector (given the chunk's buffer): the threads' vector headers in
+      // `staged` share cache lines.
+      chunk.swap(staged[c]);
       const std::size_t b0 = static_cast<std::size_t>(c) * kChunkBlocks;
       for (std::size_t b = b0; b < std::min(blocks, b0 + kChunkBlocks); ++b) {
         std::size_t depth = 0;
         for (std::size_t i = b * kLanes; i < std::min(n, (b + 1) * kLanes); ++i) {
           collect(i, list);
           count[i] = static_cast<std::uint32_t>(list.size());
-          staged[c].insert(staged[c].end(), list.begin(), list.end());
+          chunk.insert(chunk.end(), list.begin(), list.end());
           depth = std::max(depth, list.size());
         }
         blockStart_[b + 1] = depth * kLanes;
       }
+      staged[c].swap(chunk);
     }
   }
   for (std::size_t b = 0; b < blocks; ++b)
@@ -280,12 +279,14 @@ void BondedSolver::computeForces(bool kick) {
   constexpr std::size_t kChunk = 64; // blocks per call
   const long chunks = static_cast<long>((blocks + kChunk - 1) / kChunk);
   long newlyBroken = 0;
+  static const bool avx512 = bondedpass::avx512Available();
+  const auto forces = avx512 ? bondedpass::blockForcesAvx512 : blockForces;
   // Dynamic: a thread that loses its core for a while leaves its chunks to the others; which
   // thread computes a particle does not change its bits.
 #pragma omp parallel for schedule(dynamic) reduction(+ : newlyBroken)
   for (long c = 0; c < chunks; ++c)
-    newlyBroken += blockForces(pass, static_cast<std::size_t>(c) * kChunk,
-                               std::min(blocks, (static_cast<std::size_t>(c) + 1) * kChunk));
+    newlyBroken += forces(pass, static_cast<std::size_t>(c) * kChunk,
+                          std::min(blocks, (static_cast<std::size_t>(c) + 1) * kChunk));
   if (newlyBroken > 0)
     bookBreaks();
 }

@@ -28,12 +28,14 @@
 #pragma once
 
 #include "bonded/BondedBody.h"
+#include "common/CellList.h"
 #include "common/Progress.h"
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace craterkit {
@@ -104,6 +106,11 @@ private:
   std::vector<std::uint32_t> partner_;     // the other particle (the particle itself: padding)
   std::vector<double> rest_;               // rest length of the pair's intact bond, or +∞
   std::vector<std::uint32_t> blockBreaks_; // bonds broken in the last pass, per block
+  // The rebuild's buffers: the cell list, each chunk's staged (partner, rest) lists and each
+  // particle's list length.
+  CellList cells_;
+  std::vector<std::vector<std::pair<std::uint32_t, double>>> staged_;
+  std::vector<std::uint32_t> listed_;
 };
 
 } // namespace craterkit

@@ -1,0 +1,131 @@
+#include "bonded/BondedForcesAvx512.h"
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
+#define CK_BONDED_AVX512 1
+#include <immintrin.h>
+#endif
+
+#include <algorithm>
+
+namespace craterkit {
+namespace bondedpass {
+
+#ifdef CK_BONDED_AVX512
+
+bool avx512Available() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+         __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
+}
+
+// Everything below is compiled for x86-64-v4 and called only where avx512Available().
+#pragma GCC push_options
+#pragma GCC target("arch=x86-64-v4")
+// GCC 12's own intrinsics (_mm512_sqrt_pd starts from an undefined register)
+// trip this warning; nothing here reads an uninitialised value.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
+namespace {
+
+// x, y and z of the eight particles `ids` (AoS, three doubles each): one 256-bit load per
+// particle (its fourth double masked off, so the last particle reads nothing beyond the array),
+// paired into 512-bit registers and transposed.
+// x, y and z of the eight particles `ids` (AoS, three doubles each), one scalar load each:
+// hardware gathers and 256-bit loads of each particle transposed measured slower on this pass.
+inline void loadPositions(const double* x, __m256i ids, __m512d& px, __m512d& py, __m512d& pz) {
+  alignas(32) std::uint32_t j[kLanes];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(j), ids);
+  const double* q[kLanes];
+  for (std::size_t l = 0; l < kLanes; ++l)
+    q[l] = x + 3 * std::size_t(j[l]);
+  px = _mm512_setr_pd(q[0][0], q[1][0], q[2][0], q[3][0], q[4][0], q[5][0], q[6][0], q[7][0]);
+  py = _mm512_setr_pd(q[0][1], q[1][1], q[2][1], q[3][1], q[4][1], q[5][1], q[6][1], q[7][1]);
+  pz = _mm512_setr_pd(q[0][2], q[1][2], q[2][2], q[3][2], q[4][2], q[5][2], q[6][2], q[7][2]);
+}
+
+} // namespace
+
+// The lane loop of the generic pass, operation for operation (see the header on the fused
+// multiply-adds).
+long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1) {
+  const double* x = p.x;
+  const __m512d sigma2 = _mm512_set1_pd(p.terms.sigma2), rEq2 = _mm512_set1_pd(p.terms.rEq2);
+  const __m512d kappa = _mm512_set1_pd(p.terms.kappa), rCut2 = _mm512_set1_pd(p.rCut2);
+  const __m512d c24 = _mm512_set1_pd(24.0 * p.terms.epsilon);
+  const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0), two = _mm512_set1_pd(2.0);
+  const __m512d noBond = _mm512_set1_pd(kNoBond), breaking = _mm512_set1_pd(kBreaking);
+  const __m256i laneIds = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i last = _mm256_set1_epi32(static_cast<int>(p.n - 1));
+  long total = 0;
+  for (std::size_t b = b0; b < b1; ++b) {
+    const __m256i self = _mm256_min_epu32(
+        _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(b * kLanes)), laneIds), last);
+    __m512d xi, yi, zi;
+    loadPositions(x, self, xi, yi, zi);
+    __m512d fx = zero, fy = zero, fz = zero;
+    std::uint32_t broke = 0;
+    for (std::size_t e = p.blockStart[b]; e < p.blockStart[b + 1]; e += kLanes) {
+      __m512d xj, yj, zj;
+      loadPositions(x, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p.partner + e)), xj, yj,
+                    zj);
+      const __m512d dx = _mm512_sub_pd(xi, xj), dy = _mm512_sub_pd(yi, yj),
+                    dz = _mm512_sub_pd(zi, zj);
+      const __m512d r2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
+      const __m512d r0 = _mm512_loadu_pd(p.rest + e);
+      const __mmask8 breaks = _mm512_cmp_pd_mask(r0, noBond, _CMP_LT_OQ) &
+                              _mm512_cmp_pd_mask(r2, rCut2, _CMP_GT_OQ); // for good
+      if (breaks) {
+        _mm512_mask_storeu_pd(p.rest + e, breaks, breaking);
+        broke += static_cast<std::uint32_t>(__builtin_popcount(breaks));
+      }
+      const __m512d r0e = _mm512_mask_blend_pd(breaks, r0, noBond);
+      const __m512d inv = _mm512_div_pd(one, r2);
+      const __mmask8 near =
+          _mm512_cmp_pd_mask(r2, rEq2, _CMP_LT_OQ) & _mm512_cmp_pd_mask(r2, zero, _CMP_GT_OQ);
+      const __m512d s2 = _mm512_mul_pd(sigma2, inv);
+      const __m512d s6 = _mm512_mul_pd(_mm512_mul_pd(s2, s2), s2);
+      const __m512d repel = _mm512_maskz_mul_pd(
+          near, _mm512_mul_pd(_mm512_mul_pd(c24, s6), _mm512_sub_pd(_mm512_mul_pd(two, s6), one)),
+          inv);
+      const __m512d r = _mm512_sqrt_pd(r2);
+      const __mmask8 pull = _mm512_cmp_pd_mask(r, r0e, _CMP_GT_OQ);
+      const __m512d f = _mm512_mask3_fnmadd_pd(_mm512_mul_pd(kappa, _mm512_sub_pd(r, r0e)),
+                                               _mm512_mul_pd(r, inv), repel, pull);
+      fx = _mm512_fmadd_pd(f, dx, fx);
+      fy = _mm512_fmadd_pd(f, dy, fy);
+      fz = _mm512_fmadd_pd(f, dz, fz);
+    }
+    p.breaks[b] = broke;
+    total += broke;
+    alignas(64) double f[3][kLanes];
+    _mm512_store_pd(f[0], fx);
+    _mm512_store_pd(f[1], fy);
+    _mm512_store_pd(f[2], fz);
+    const std::size_t lanes = std::min(kLanes, p.n - b * kLanes);
+    for (std::size_t l = 0; l < lanes; ++l) {
+      const std::size_t i = b * kLanes + l;
+      for (int k = 0; k < 3; ++k)
+        p.force[3 * i + k] = f[k][l];
+      if (p.v) {
+        const double h = p.halfStep / p.m[i];
+        for (int k = 0; k < 3; ++k)
+          p.v[3 * i + k] = __builtin_fma(h, f[k][l], p.v[3 * i + k]);
+      }
+    }
+  }
+  return total;
+}
+
+#pragma GCC diagnostic pop
+#pragma GCC pop_options
+
+#else
+
+bool avx512Available() { return false; }
+long blockForcesAvx512(const BlockPass&, std::size_t, std::size_t) { return 0; }
+
+#endif
+
+} // namespace bondedpass
+} // namespace craterkit
