@@ -14,8 +14,7 @@ namespace bondedpass {
 
 bool avx512Available() {
   __builtin_cpu_init();
-  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-         __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
+  return __builtin_cpu_supports("x86-64-v4"); // the level the code below is compiled for
 }
 
 // Everything below is compiled for x86-64-v4 and called only where avx512Available().
@@ -28,9 +27,6 @@ bool avx512Available() {
 
 namespace {
 
-// x, y and z of the eight particles `ids` (AoS, three doubles each): one 256-bit load per
-// particle (its fourth double masked off, so the last particle reads nothing beyond the array),
-// paired into 512-bit registers and transposed.
 // x, y and z of the eight particles `ids` (AoS, three doubles each), one scalar load each:
 // hardware gathers and 256-bit loads of each particle transposed measured slower on this pass.
 inline void loadPositions(const double* x, __m256i ids, __m512d& px, __m512d& py, __m512d& pz) {

@@ -44,10 +44,11 @@ using bondedpass::kNoBond;
 
 // The forces on the particles of blocks [b0, b1): eight particles side by side, each lane
 // summing its particle's entries in list order. An intact bond beyond r_cut is marked
-// kBreaking, contributes its repulsion only, and is counted in its block. Cloned for AVX-512
-// (sph/SimdClones.h), where the lane loop is one instruction wide; the two differ by rounding.
-// Where the processor has AVX-512, bondedpass::blockForcesAvx512 runs instead (the clone's
-// operations with 512-bit registers and loads; the same bits).
+// kBreaking, contributes its repulsion only, and is counted in its block. Where the processor
+// has x86-64-v4 and the build has BondedForcesAvx512.cpp's pass (GCC 12+), that runs instead:
+// the operations of this function's AVX-512 clone (sph/SimdClones.h; GCC 12 runs its lane loop
+// as two 256-bit halves) in 512-bit registers, with the same bits. The clone serves builds
+// without it; the generic code differs from both by rounding.
 constexpr std::size_t kPassLanes = bondedpass::kLanes;
 
 CK_SIMD_CLONES long blockForces(const BlockPass& p, std::size_t b0, std::size_t b1) {

@@ -1,10 +1,10 @@
 // The DEM's accelerations from a particle's summed force and torque (Newton-Euler for a sphere:
 // a = F/m + g, alpha = T/I; Schwartz, Richardson & Michel 2012, §2.3).
 //
-// Six divisions per particle and step were a tenth of the force gather: divisions are slow
-// and, one number at a time, wait for each other. Here they run two at a time (SSE2 is part
-// of every x86-64). Each quotient is the correctly rounded one, as the scalar division's: the
-// same bits.
+// Six divisions per particle and step (7 % of the force gather's samples at commit 7828800,
+// benchmarks/JOURNAL.md) run two at a time (SSE2 is part of every x86-64), so that they do
+// not wait for each other. Each quotient is the correctly rounded one, as the scalar
+// division's: the same bits.
 #pragma once
 
 #if defined(__SSE2__)

@@ -140,8 +140,8 @@ private:
   int current_ = 0;        // tables_[current_] is the last evaluation's
   WallContacts wallContacts_;
   std::vector<std::uint64_t> wallNear_; // per particle: walls within r + skin at the last build
+  ParticleContacts contactsOf_;         // each particle's rows of the new table
   // Per thread: the pairs it found in contact; where each thread's rows start.
-  ParticleContacts contactsOf_; // each particle's rows of the new table
   std::vector<std::vector<std::uint32_t>> touching_;
   std::vector<std::size_t> touchingStart_;
   double moved_ = 0.0; // largest squared displacement since the last build

@@ -10,7 +10,11 @@
 // them in registers (48 shuffles for sixteen fields), then evaluates the same terms in the same
 // order. It runs where the processor has AVX-512 (`wideKernelAvailable`); the two differ only
 // by rounding (fused multiply-adds, the order of the final lane sum). Both accumulate only
-// the particle's own sums, so the result does not depend on the thread count.
+// the particle's own sums, so the result does not depend on the thread count. Its reciprocals
+// and square roots start from the processor's 14-bit estimates (vrcp14pd, vrsqrt14pd) refined
+// by two Newton steps; the instruction set bounds those estimates but does not fix their bits,
+// so a checkpoint continues bit for bit on processors of the same kind (exact division measured
+// only 2 % slower, benchmarks/JOURNAL.md, if that ever matters).
 #pragma once
 
 #include <cstddef>

@@ -20,8 +20,10 @@ namespace craterkit {
 
 #ifdef CK_WIDE_PAIRS
 
+// The whole x86-64-v4 level (AVX-512 F, CD, BW, DQ, VL), a superset of what CK_WIDE enables.
 bool wideKernelAvailable() {
-  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("x86-64-v4");
 }
 
 #define CK_WIDE __attribute__((target("avx512f,avx512dq,avx512vl,avx2,fma")))

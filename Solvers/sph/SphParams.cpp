@@ -45,4 +45,18 @@ void SphParams::validate() const {
     throw InputError("SPH: the late-stage sound speed must be positive");
 }
 
+void bodyForce(const SphParams& par, const double* x, double g[3]) {
+  for (int k = 0; k < 3; ++k)
+    g[k] = par.gravity[k];
+  if (par.pointMassGM > 0.0) {
+    const double dx = x[0] - par.pointMassAt[0], dy = x[1] - par.pointMassAt[1],
+                 dz = x[2] - par.pointMassAt[2];
+    const double r2 = dx * dx + dy * dy + dz * dz;
+    if (r2 > 0.0) {
+      const double k = -par.pointMassGM / (r2 * std::sqrt(r2));
+      g[0] += k * dx, g[1] += k * dy, g[2] += k * dz;
+    }
+  }
+}
+
 } // namespace craterkit

@@ -66,4 +66,7 @@ struct SphParams {
   void validate() const;
 };
 
+// The body force per unit mass at x: uniform gravity plus the point mass's attraction.
+void bodyForce(const SphParams& par, const double* x, double g[3]);
+
 } // namespace craterkit

@@ -187,11 +187,12 @@ std::size_t supportStream(const PairPosition* Xp, std::uint32_t self, const std:
   return m;
 }
 
-// Pass 2: the pair terms of particle A over the m pairs of supportStream in w. Cloned
-// (sph/SimdClones.h) for x86-64-v4 (AVX-512), chosen at run time where the processor has it:
-// its 32 vector registers hold the loop's 17 sums and temporaries, so the pair loop runs eight
-// pairs wide (27 % less time for the SCI-like run here; AVX2, with 16 registers, spills and
-// gains nothing). Elsewhere the generic code runs. The two differ only by rounding.
+// Pass 2: the pair terms of particle A over the m pairs of supportStream in w. Where
+// PairTermsWide.cpp is compiled (GCC 12+ on x86-64) and the processor has x86-64-v4, that
+// version runs instead. The AVX-512 clone (sph/SimdClones.h) serves builds without it (other
+// compilers): its 32 vector registers hold the loop's 17 sums and temporaries, so the loop runs
+// eight pairs wide (27 % less time than the generic code for the SCI-like run, 2026-12-01;
+// benchmarks/JOURNAL.md). All versions differ only by rounding.
 template <class K, bool Xsph> CK_SIMD_CLONES PairSums pairSums(const Packed* Pp, const Packed& A,
                                                                std::size_t m, const Scratch& w,
                                                                const PairConstants& pc) {
@@ -332,16 +333,8 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
     signal = std::max(signal, sums.sig);
     const double* xa = Xp[a].x;
     const double* Sa = &s.S[6 * a];
-    double ext[3] = {par_.gravity[0], par_.gravity[1], par_.gravity[2]};
-    if (par_.pointMassGM > 0.0) {
-      const double dx = xa[0] - par_.pointMassAt[0], dy = xa[1] - par_.pointMassAt[1],
-                   dz = xa[2] - par_.pointMassAt[2];
-      const double r2 = dx * dx + dy * dy + dz * dz;
-      if (r2 > 0.0) {
-        const double k = -par_.pointMassGM / (r2 * std::sqrt(r2));
-        ext[0] += k * dx, ext[1] += k * dy, ext[2] += k * dz;
-      }
-    }
+    double ext[3];
+    bodyForce(par_, xa, ext);
     const bool rigid = rigidMat[static_cast<std::size_t>(s.material[a])];
     for (int k = 0; k < 3; ++k)
       r.dv[3 * a + k] = rigid ? 0.0 : acc[k] + ext[k];

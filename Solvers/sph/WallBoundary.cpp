@@ -13,21 +13,6 @@ namespace craterkit {
 
 namespace {
 
-// The body force per unit mass at x: uniform gravity plus the point mass (as the solver's).
-void bodyForce(const SphParams& par, const double* x, double g[3]) {
-  for (int k = 0; k < 3; ++k)
-    g[k] = par.gravity[k];
-  if (par.pointMassGM > 0.0) {
-    const double dx = x[0] - par.pointMassAt[0], dy = x[1] - par.pointMassAt[1],
-                 dz = x[2] - par.pointMassAt[2];
-    const double r2 = dx * dx + dy * dy + dz * dz;
-    if (r2 > 0.0) {
-      const double k = -par.pointMassGM / (r2 * std::sqrt(r2));
-      g[0] += k * dx, g[1] += k * dy, g[2] += k * dz;
-    }
-  }
-}
-
 // The bulk density at which the material's law gives the bulk pressure P (Adami Eq. 28): the
 // reference ρ0/α where P is at or below the law's pressure there (a wall's density is not
 // lowered by tension), else the root above it, where p rises with ρ for every law with a
