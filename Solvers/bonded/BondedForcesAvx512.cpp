@@ -1,4 +1,4 @@
-#include "bonded/BondedForcesAvx512.h"
+#include "bonded/BondedForces.h"
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
 #define CK_BONDED_AVX512 1

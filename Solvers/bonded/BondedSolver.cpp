@@ -1,11 +1,10 @@
 #include "bonded/BondedSolver.h"
 
-#include "bonded/BondedForcesAvx512.h"
+#include "bonded/BondedForces.h"
 
 #include "common/AtomicWrite.h"
 #include "common/CellList.h"
 #include "common/Error.h"
-#include "sph/SimdClones.h"
 
 #include <algorithm>
 #include <cmath>
@@ -41,65 +40,6 @@ template <class F> double chunkedSum(std::size_t n, F&& f) {
 using bondedpass::BlockPass;
 using bondedpass::kBreaking;
 using bondedpass::kNoBond;
-
-// The forces on the particles of blocks [b0, b1): eight particles side by side, each lane
-// summing its particle's entries in list order. An intact bond beyond r_cut is marked
-// kBreaking, contributes its repulsion only, and is counted in its block. Where the processor
-// has x86-64-v4 and the build has BondedForcesAvx512.cpp's pass (GCC 12+), that runs instead:
-// the operations of this function's AVX-512 clone (sph/SimdClones.h; GCC 12 runs its lane loop
-// as two 256-bit halves) in 512-bit registers, with the same bits. The clone serves builds
-// without it; the generic code differs from both by rounding.
-constexpr std::size_t kPassLanes = bondedpass::kLanes;
-
-CK_SIMD_CLONES long blockForces(const BlockPass& p, std::size_t b0, std::size_t b1) {
-  constexpr std::size_t L = kPassLanes;
-  const double* x = p.x;
-  const ws2017::PairTerms terms = p.terms;
-  const double rCut2 = p.rCut2;
-  long total = 0;
-  for (std::size_t b = b0; b < b1; ++b) {
-    double xi[L], yi[L], zi[L], fx[L], fy[L], fz[L];
-    for (std::size_t l = 0; l < L; ++l) {
-      const std::size_t i = std::min(p.n - 1, b * L + l);
-      xi[l] = x[3 * i], yi[l] = x[3 * i + 1], zi[l] = x[3 * i + 2];
-      fx[l] = fy[l] = fz[l] = 0.0;
-    }
-    std::uint32_t broke = 0;
-    for (std::size_t e = p.blockStart[b]; e < p.blockStart[b + 1]; e += L) {
-      const std::uint32_t* J = p.partner + e;
-      double* R0 = p.rest + e;
-#pragma omp simd reduction(+ : broke)
-      for (std::size_t l = 0; l < L; ++l) {
-        const std::size_t j = J[l];
-        const double dx = xi[l] - x[3 * j], dy = yi[l] - x[3 * j + 1], dz = zi[l] - x[3 * j + 2];
-        const double r2 = dx * dx + dy * dy + dz * dz;
-        const double r0 = R0[l];
-        const bool breaks = (r0 < kNoBond) & (r2 > rCut2); // Section 2.2.2: for good
-        const double f = ws2017::pairForceOverR(r2, breaks ? kNoBond : r0, terms);
-        if (breaks)
-          R0[l] = kBreaking;
-        broke += breaks;
-        fx[l] += f * dx;
-        fy[l] += f * dy;
-        fz[l] += f * dz;
-      }
-    }
-    p.breaks[b] = broke;
-    total += broke;
-    const std::size_t lanes = std::min(L, p.n - b * L);
-    for (std::size_t l = 0; l < lanes; ++l) {
-      const std::size_t i = b * L + l;
-      double* f = p.force + 3 * i;
-      f[0] = fx[l], f[1] = fy[l], f[2] = fz[l];
-      if (p.v) {
-        const double h = p.halfStep / p.m[i];
-        for (int k = 0; k < 3; ++k)
-          p.v[3 * i + k] += h * f[k];
-      }
-    }
-  }
-  return total;
-}
 
 constexpr char kMagic[8] = {'C', 'K', 'B', 'O', 'N', 'D', '0', '1'};
 
@@ -262,7 +202,7 @@ void BondedSolver::buildPairs() {
 
 void BondedSolver::computeForces(bool kick) {
   const std::size_t n = sys_.size(), blocks = blockStart_.size() - 1;
-  static_assert(kLanes == kPassLanes, "the pass and the lists' blocks must agree");
+  static_assert(kLanes == bondedpass::kLanes, "the pass and the lists' blocks must agree");
   const ws2017::Law& law = sys_.law;
   BlockPass pass;
   pass.x = sys_.positions.data();
@@ -281,7 +221,7 @@ void BondedSolver::computeForces(bool kick) {
   const long chunks = static_cast<long>((blocks + kChunk - 1) / kChunk);
   long newlyBroken = 0;
   static const bool avx512 = bondedpass::avx512Available();
-  const auto forces = avx512 ? bondedpass::blockForcesAvx512 : blockForces;
+  const auto forces = avx512 ? bondedpass::blockForcesAvx512 : bondedpass::blockForces;
   // Dynamic: a thread that loses its core for a while leaves its chunks to the others; which
   // thread computes a particle does not change its bits.
 #pragma omp parallel for schedule(dynamic) reduction(+ : newlyBroken)

@@ -1,0 +1,61 @@
+// The force pass of the bonded-particle model (Watson & Steinhauser 2017, Eqs. 3–4, see
+// WatsonSteinhauser2017.h) over the solver's pair lists in blocks of eight particles, in two
+// versions: the generic pass (BondedForces.cpp, cloned for AVX-512 by sph/SimdClones.h) and the
+// same pass written with AVX-512 intrinsics (BondedForcesAvx512.cpp): the eight lanes of a block
+// are the eight doubles of one 512-bit register (GCC 12's AVX-512 clone of the generic pass runs
+// them as two 256-bit halves), and bond breaks are masked stores.
+//
+// Each lane of the intrinsics pass does the operations of the compiled AVX-512 clone of the
+// generic pass in the same order, including its fused multiply-adds (r² = dz² + (dx² + dy²),
+// the spring's pull subtracted from the repulsion, each force component accumulated, the half
+// kick), and its file is compiled with -ffp-contract=off so that no other operation is fused: on
+// a processor with AVX-512 both give the same bits (asserted by
+// BondedForces.Avx512PassEqualsTheGenericPassBitForBit), so runs do not depend on which ran.
+#pragma once
+
+#include "bonded/WatsonSteinhauser2017.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+namespace craterkit {
+namespace bondedpass {
+
+// List entries' rest lengths: no intact bond; a bond the current pass found beyond r_cut.
+constexpr double kNoBond = std::numeric_limits<double>::infinity();
+constexpr double kBreaking = -1.0;
+constexpr std::size_t kLanes = 8;
+
+// One force pass over blocks of kLanes particles: block b's entries are [blockStart[b],
+// blockStart[b + 1]), entry k of its lane l at blockStart[b] + k kLanes + l.
+struct BlockPass {
+  const double* x;
+  std::size_t n;
+  const std::size_t* blockStart;
+  const std::uint32_t* partner;
+  double* rest;
+  std::uint32_t* breaks;
+  double* force;
+  double* v; // null: forces only; else the second half kick too
+  const double* m;
+  double halfStep;
+  ws2017::PairTerms terms;
+  double rCut2;
+};
+
+// The forces on the particles of blocks [b0, b1): eight particles side by side, each lane
+// summing its particle's entries in list order. An intact bond beyond r_cut is marked
+// kBreaking, contributes its repulsion only, and is counted in its block (p.breaks); the half
+// kick too if p.v. Returns the number of bonds found beyond r_cut. Runs anywhere; its AVX-512
+// clone differs from the plain code by rounding.
+long blockForces(const BlockPass& p, std::size_t b0, std::size_t b1);
+// Whether this processor runs blockForcesAvx512 (the x86-64-v4 level: AVX-512 F, CD, BW, DQ, VL).
+bool avx512Available();
+// The forces on the particles of blocks [b0, b1) (and the half kick if p.v): returns the number
+// of bonds found beyond r_cut, marked kBreaking and counted per block in p.breaks. Only where
+// avx512Available().
+long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1);
+
+} // namespace bondedpass
+} // namespace craterkit

@@ -1,0 +1,94 @@
+// The bonded model's force pass in its two versions (bonded/BondedForces.h): where the processor
+// has AVX-512, the intrinsics pass must give the bits of the generic pass's AVX-512 clone, so
+// that a run does not depend on which of the two ran (the solver picks one at run time).
+#include "bonded/BondedForces.h"
+#include "bonded/WatsonSteinhauser2017.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+using namespace craterkit;
+
+namespace {
+
+// A pass over n particles in a box of 2σ (partners 1.3σ apart on average), each lane with `depth`
+// listed partners: a third without a bond, the rest bonded with rest lengths around r_eq, so that
+// some bonds sit beyond r_cut (they break) and some partners are closer than r_eq (repulsion). The
+// last block is part full (n not a multiple of eight), as in the solver.
+struct PassData {
+  std::vector<double> x, rest, force, v, m;
+  std::vector<std::size_t> blockStart;
+  std::vector<std::uint32_t> partner, breaks;
+};
+
+PassData makePass(std::size_t n, std::size_t depth, double sigma, unsigned seed) {
+  using bondedpass::kLanes;
+  PassData d;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> box(0.0, 2.0 * sigma), rel(0.8, 1.3), kick(-1.0, 1.0);
+  std::uniform_int_distribution<std::uint32_t> pick(0, static_cast<std::uint32_t>(n - 1));
+  for (std::size_t i = 0; i < 3 * n; ++i)
+    d.x.push_back(box(rng)), d.v.push_back(kick(rng));
+  d.m.assign(n, 1e-9);
+  const std::size_t blocks = (n + kLanes - 1) / kLanes;
+  for (std::size_t b = 0; b <= blocks; ++b)
+    d.blockStart.push_back(b * depth * kLanes);
+  const double rEq = ws2017::kTwoToOneSixth * sigma;
+  for (std::size_t e = 0; e < blocks * depth * kLanes; ++e) {
+    d.partner.push_back(pick(rng));
+    d.rest.push_back(e % 3 == 0 ? bondedpass::kNoBond : rel(rng) * rEq);
+  }
+  d.breaks.assign(blocks, 0);
+  d.force.assign(3 * n, 0.0);
+  return d;
+}
+
+bondedpass::BlockPass passOf(PassData& d, double sigma, bool kick) {
+  bondedpass::BlockPass p;
+  p.x = d.x.data();
+  p.n = d.x.size() / 3;
+  p.blockStart = d.blockStart.data();
+  p.partner = d.partner.data();
+  p.rest = d.rest.data();
+  p.breaks = d.breaks.data();
+  p.force = d.force.data();
+  p.v = kick ? d.v.data() : nullptr;
+  p.m = d.m.data();
+  p.halfStep = 0.5e-10;
+  const double rEq = ws2017::kTwoToOneSixth * sigma;
+  p.terms = {sigma * sigma, ws2017::kHeadlineEpsilon, ws2017::kHeadlineKappa, rEq * rEq};
+  p.rCut2 = 1.5 * sigma * 1.5 * sigma;
+  return p;
+}
+
+template <class T> bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+} // namespace
+
+TEST(BondedForces, Avx512PassEqualsTheGenericPassBitForBit) {
+  if (!bondedpass::avx512Available())
+    GTEST_SKIP() << "this processor has no AVX-512: only the generic pass runs here";
+  const double sigma = ws2017::headlineSigma();
+  for (bool kick : {false, true}) {
+    PassData generic = makePass(1003, 12, sigma, 7), wide = generic; // a third of entries unbonded
+    const std::size_t blocks = generic.breaks.size();
+    const long brokeGeneric = bondedpass::blockForces(passOf(generic, sigma, kick), 0, blocks);
+    const long brokeWide = bondedpass::blockForcesAvx512(passOf(wide, sigma, kick), 0, blocks);
+    std::printf("kick %d: %ld bonds beyond r_cut of %zu entries\n", kick, brokeGeneric,
+                generic.rest.size());
+    // The case must hold breaks and intact bonds, or it tests less than it claims.
+    const long bonded = static_cast<long>(2 * generic.rest.size() / 3);
+    ASSERT_GT(brokeGeneric, 0);
+    ASSERT_LT(brokeGeneric, bonded);
+    EXPECT_EQ(brokeWide, brokeGeneric);
+    EXPECT_TRUE(sameBits(wide.force, generic.force)) << "forces differ";
+    EXPECT_TRUE(sameBits(wide.rest, generic.rest)) << "bond marks differ";
+    EXPECT_TRUE(sameBits(wide.breaks, generic.breaks)) << "per-block break counts differ";
+    EXPECT_TRUE(sameBits(wide.v, generic.v)) << "half kicks differ";
+  }
+}
