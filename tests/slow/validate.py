@@ -132,6 +132,47 @@ def sci_crater_ryugu(args):
     return rows
 
 
+def ryugu_report(args, name, packing="RCP", particles=30000):
+    """The report of one bed of an SCI case already run into BUILD/slow/NAME."""
+    with open(os.path.join(args.build, "slow", name, "summary.json")) as f:
+        rows = json.load(f)["rows"]
+    return {(r["packing"], r["particles"]): r["report"] for r in rows}[(packing, particles)]
+
+
+def convergence_rows(case, coarse, fine, what):
+    """D and depth of the finer run against the coarser: the change relative to the finer run's
+    figure, within 10 % to pass (issue 32: a validation holds only where the finer pair agree)."""
+    rows = []
+    for key, label in (("crater_diameter_m", "diameter"), ("crater_depth_m", "depth")):
+        a, b = coarse[key] or float("nan"), fine[key] or float("nan")
+        change = (b - a) / b
+        print(f"{case}: {label} {a:.3g} m -> {b:.3g} m ({what}): change {change:+.1%}", flush=True)
+        rows.append(Row(case, f"{label} change, {what} ({a:.3g} -> {b:.3g} m)", 100.0 * change,
+                        "0 %", "± 10 %", abs(change) <= 0.10, " %"))
+    return rows
+
+
+def sci_convergence_bed(args):
+    """Convergence in the bed: the Ryugu case's coarsening-15 SPH stage handed to 30,000 (the
+    Ryugu case's own run) and 100,000 RCP grains; D and depth must change by less than 10 %."""
+    coarse = ryugu_report(args, "sci_ryugu")
+    fine = sci_run(args, "sci_ryugu_bed100k", 1.5e-4, [100000], ["RCP"],
+                   RYUGU_STAGE + ["--sph-state", os.path.join(args.build, "slow", "sci_ryugu", "RCP_30000",
+                                                              "sph_handoff.vtp")])[("RCP", 100000)]
+    return convergence_rows("sci_convergence_bed", coarse, fine, "30,000 -> 100,000 grains")
+
+
+def sci_convergence_sph(args):
+    """Convergence in the SPH stage: the Ryugu case (30,000 RCP grains) on the coarsening-15 and
+    the coarsening-10 SPH targets (coarse spacing 0.57 and 0.38 m); D and depth must change by
+    less than 10 %."""
+    coarse = ryugu_report(args, "sci_ryugu")
+    stage = list(RYUGU_STAGE)
+    stage[stage.index("--sph-coarsening") + 1] = "10"
+    fine = sci_run(args, "sci_ryugu_c10", 1.5e-4, [30000], ["RCP"], stage)[("RCP", 30000)]
+    return convergence_rows("sci_convergence_sph", coarse, fine, "SPH coarsening 15 -> 10")
+
+
 def rcp_vs_hcp(args):
     """RCP against HCP beds on the same hand-off at Ryugu's gravity (30,000 grains): the seed's
     claim is that HCP makes the smaller, shallower crater. Stated as measured; the case fails only
@@ -152,9 +193,7 @@ def pi_scaling(args):
     for g, n in ((1000.0, 6000), (10.0, 6000)):
         r = sci_run(args, f"pi_scaling_g{g:g}", g, [n], ["RCP"], [])[("RCP", n)]
         ratios.append((g, r["diameter_over_pi_scaling"]))
-    with open(os.path.join(args.build, "slow", "sci_ryugu", "summary.json")) as f:
-        ryugu = json.load(f)["rows"][0]["report"]
-    ratios.append((1.5e-4, ryugu["diameter_over_pi_scaling"]))
+    ratios.append((1.5e-4, ryugu_report(args, "sci_ryugu")["diameter_over_pi_scaling"]))
     mean = sum(x for _, x in ratios) / len(ratios)
     for g, x in ratios:
         rows.append(Row("pi_scaling", f"D / D_pi at g = {g:g} m/s²", x, f"{mean:.3g} (mean)", "± 15 %",
@@ -231,7 +270,8 @@ def hvi_front_velocity(args):
 CASES = {"angle_of_repose": angle_of_repose, "column_collapse": column_collapse,
          "sph_column_flank": sph_column_flank, "sci_crater_ryugu": sci_crater_ryugu,
          "rcp_vs_hcp": rcp_vs_hcp, "pi_scaling": pi_scaling, "hvi_debris_cloud": hvi_debris_cloud,
-         "hvi_front_velocity": hvi_front_velocity}
+         "hvi_front_velocity": hvi_front_velocity, "sci_convergence_bed": sci_convergence_bed,
+         "sci_convergence_sph": sci_convergence_sph}
 
 # --- the summary table ----------------------------------------------------------------------
 
