@@ -63,6 +63,10 @@ struct SphParams {
   // 2026-12-05), whose pressure falls to zero under a dilating layer and alternates from row to
   // row in a column at rest (docs/validation.md, "The infinite slope, analysed").
   enum class Walls { Extrapolated, Dynamic } walls = Walls::Extrapolated;
+  // The artificial viscosity between a rigid particle and a non-rigid one, a factor on its
+  // term (1: as between two material particles; 0: none, as Adami et al.'s free-slip wall;
+  // DualSPHysics's ViscoBoundFactor is such a factor).
+  double wallViscosity = 1.0;
   void validate() const;
 };
 
