@@ -35,8 +35,8 @@ struct alignas(64) PairRecord {
   double h, rho, m, vol; // vol = m/ρ
   double pr;             // p/ρ²
   double c;
-  double s[6]; // S/ρ²
-  double unused;
+  double s[6];  // S/ρ²
+  double rigid; // 1 for a rigid (wall) particle, else 0
 };
 static_assert(sizeof(PairRecord) == 128, "two 64-byte vector loads per record");
 
@@ -61,6 +61,8 @@ struct PairSums {
 
 struct PairConstants {
   double av, bv, xsph, stressOn, gradOn;
+  double
+      wallViscosity; // the artificial viscosity's factor between a rigid and a non-rigid particle
   bool periodic;
   double period[3]; // box lengths of the periodic axes
 };

@@ -113,7 +113,7 @@ CK_WIDE PairSums pairSumsAvx512(const PairRecord* records, const PairRecord& A, 
   const V ah = bc(A.h), arho = bc(A.rho), apr = bc(A.pr), ac = bc(A.c);
   const V avx = bc(A.v[0]), avy = bc(A.v[1]), avz = bc(A.v[2]);
   const V nav = bc(-pc.av), bv2 = bc(2.0 * pc.bv), stressOn = bc(pc.stressOn);
-  const V gradOn = bc(pc.gradOn), xsph = bc(pc.xsph);
+  const V gradOn = bc(pc.gradOn), xsph = bc(pc.xsph), wallVisc1 = bc(pc.wallViscosity - 1.0);
   const std::uint64_t* idx = w.idx.data();
   for (std::size_t k = 0; k < m; k += kPairLanes) {
     V row[8], lo[8], hi[8];
@@ -122,7 +122,7 @@ CK_WIDE PairSums pairSumsAvx512(const PairRecord* records, const PairRecord& A, 
     transpose8(row, lo); // vx vy vz h rho m vol pr
     for (int j = 0; j < 8; ++j)
       row[j] = _mm512_load_pd(&records[idx[k + j]].c);
-    transpose8(row, hi); // c s0 … s5 unused
+    transpose8(row, hi); // c s0 … s5 rigid
     const V rx = _mm512_loadu_pd(&w.rx[k]), ry = _mm512_loadu_pd(&w.ry[k]);
     const V rz = _mm512_loadu_pd(&w.rz[k]), r2 = _mm512_loadu_pd(&w.r2[k]);
     const V hb = bc(0.5) * (ah + lo[3]), ih = recip(hb);
@@ -133,7 +133,8 @@ CK_WIDE PairSums pairSumsAvx512(const PairRecord* records, const PairRecord& A, 
     const V mu = hb * vr * recip(r2 + bc(0.01) * hb * hb); // h̄ = support, as miluphcuda
     const V csum = ac + hi[0], irho = recip(arho + lo[4]);
     const V piRaw = (nav * csum * mu + bv2 * mu * mu) * irho;
-    const V pi = selectLess(vr, zero, piRaw, zero);
+    const V mix = bc(A.rigid) - hi[7]; // ±1 between a wall and the material, else 0
+    const V pi = selectLess(vr, zero, piRaw, zero) * (bc(1.0) + wallVisc1 * mix * mix);
     const V sgn = selectLess(vr, zero, csum - bc(3.0) * vr * rinv, zero);
     sig = _mm512_max_pd(sig, sgn);
     const V mg = lo[5] * g;

@@ -11,6 +11,8 @@ void SphParams::validate() const {
     throw InputError("SPH: no material");
   if (!(alpha >= 0.0) || !(beta >= 0.0) || !std::isfinite(alpha) || !std::isfinite(beta))
     throw InputError("SPH: artificial viscosity alpha and beta must be finite and not negative");
+  if (!(wallViscosity >= 0.0 && wallViscosity <= 1.0))
+    throw InputError("SPH: the wall viscosity factor must be in [0, 1]");
   if (!(xsph >= 0.0 && xsph <= 1.0))
     throw InputError("SPH: the XSPH factor must be in [0, 1]");
   if (!(kappa > 1.0 && kappa < 10.0))

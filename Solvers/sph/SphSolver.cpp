@@ -205,6 +205,7 @@ template <class K, bool Xsph> CK_SIMD_CLONES PairSums pairSums(const Packed* Pp,
   const double* sa = A.s;
   const double sa0 = sa[0], sa1 = sa[1], sa2 = sa[2], sa3 = sa[3], sa4 = sa[4], sa5 = sa[5];
   const double av = pc.av, bv = pc.bv, xsph = pc.xsph, stressOn = pc.stressOn, gradOn = pc.gradOn;
+  const double wallVisc1 = pc.wallViscosity - 1.0;
 #pragma omp simd reduction(+ : acc0, acc1, acc2, dr, de, g0, g1, g2, g3, g4, g5, g6, g7, g8, \
                                xs0, xs1, xs2) reduction(max : sig)
   for (std::size_t k = 0; k < m; ++k) {
@@ -217,7 +218,8 @@ template <class K, bool Xsph> CK_SIMD_CLONES PairSums pairSums(const Packed* Pp,
     const double vr = vx * rx + vy * ry + vz * rz;
     const double mu = hb * vr / (r2 + 0.01 * hb * hb); // h̄ = support, as miluphcuda
     const double piRaw = (-av * (A.c + B.c) * mu + 2.0 * bv * mu * mu) / (A.rho + B.rho);
-    const double pi = vr < 0.0 ? piRaw : 0.0;
+    const double mix = A.rigid - B.rigid; // ±1 between a wall and the material, else 0
+    const double pi = (vr < 0.0 ? piRaw : 0.0) * (1.0 + wallVisc1 * mix * mix);
     const double sgn = vr < 0.0 ? A.c + B.c - 3.0 * vr * rinv : 0.0;
     sig = sig > sgn ? sig : sgn;
     const double mg = B.m * g;
@@ -286,6 +288,7 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
     q.h = s.h[i], q.rho = s.rho[i], q.m = s.mass[i], q.vol = s.mass[i] / s.rho[i];
     q.pr = p[i] * ir2;
     q.c = c[i];
+    q.rigid = rigidMat[static_cast<std::size_t>(s.material[i])] ? 1.0 : 0.0;
     for (int k = 0; k < 6; ++k) {
       q.s[k] = s.S[6 * i + k] * ir2;
       anyStress = anyStress || q.s[k] != 0.0;
@@ -304,6 +307,7 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
                    par_.xsph,
                    anyStress ? 1.0 : 0.0,
                    0.0,
+                   par_.wallViscosity,
                    par_.periodic[0] || par_.periodic[1] || par_.periodic[2],
                    {0.0, 0.0, 0.0}};
   for (int k = 0; k < 3; ++k)

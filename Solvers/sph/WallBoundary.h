@@ -23,6 +23,20 @@
 // slides on it 11 times faster than the yield law allows (docs/validation.md, "The infinite
 // slope, analysed"). A wall of the material's own yield holds the adjacent soil by the soil's
 // friction.
+//   Artificial viscosity: none between a wall and the material by default
+// (SphParams::wallViscosity = 0, applied in the pair terms; Adami et al. 2012 keep no viscous
+// interaction with a free-slip wall either). Monaghan's term acts only on approaching pairs, so
+// a particle sliding at speed v over the wall's particle lattice is pushed up and back by the
+// wall particles ahead of it and not held by those behind: a net lift whose scale, α (c_a +
+// c_b) v ρ, is 30 kPa at 1 m/s for the test soil (α = 0.5, K = 0.4 MPa), against 2.3 kPa of
+// weight on the floor of its 0.2 m layer. On the 40° slope it lifted the lowest soil row
+// off the floor after about 1 s, and the layer slid on it as a block at 2.02 m/s² against the
+// yield law's 1.10 (1.20 without it; docs/validation.md, "The infinite slope, analysed"). The
+// wall holds the material by its extrapolated pressure and, in shear, by its deviatoric stress,
+// whose rate takes the wall's own velocity (zero: no slip in the strain rate). The impact
+// set-up's container keeps the viscosity (factor 1) to absorb the shock; with the bilateral
+// form (receding pairs too) the lowest row stays down but a 40° layer still gains 1.81 m/s²
+// (a trial, not kept), so the lift is not the viscosity's only effect on the floor's friction.
 //   Why: with dynamic boundary particles (Crespo et al. 2007: the wall's density by continuity
 // and its pressure from its own state) a column at rest keeps a row-to-row alternation of its
 // pressure (±17–25 % in the test), the floor's rows carry 0.96 and 0.07 of the hydrostatic
