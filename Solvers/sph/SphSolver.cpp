@@ -261,6 +261,8 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
   const bool hasFlaws = !fracture_.empty();
   r.damage.rate.assign(hasFlaws ? n : 0, 0.0);
   r.damage.cap.assign(hasFlaws ? n : 0, 0.0);
+  signal_.resize(n);
+  double* const sigOut = signal_.data();
   std::vector<double> G(par_.materials.size());
   for (std::size_t m = 0; m < G.size(); ++m)
     G[m] = par_.materials[m].strength == Material::Strength::None ? 0.0
@@ -352,7 +354,8 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
     if (hasFlaws && fracture_.hasFlaws(a))
       fracture_.damageRate(a, par_.materials[static_cast<std::size_t>(s.material[a])], Sa, p[a],
                            s.damage[a], s.rho[a], s.mass[a], r.damage.rate[a], r.damage.cap[a]);
-    maxSignal = std::max(maxSignal, signal / (0.5 * s.h[a]));
+    sigOut[a] = signal / (0.5 * s.h[a]);
+    maxSignal = std::max(maxSignal, sigOut[a]);
   }
   return maxSignal;
 }
@@ -375,6 +378,19 @@ double SphSolver::limitStep(const SphState& s, const Rates& r, double maxSignal)
       dt = std::min(dt, par_.forceFactor * std::sqrt(s.h[i] / std::sqrt(a2)));
   }
   return dt;
+}
+
+SphSolver::Limits SphSolver::limits() const {
+  Limits l;
+  for (std::size_t i = 0; i < s_.size(); ++i) {
+    if (i < signal_.size() && signal_[i] > 0.0 && par_.courant / signal_[i] < l.courant)
+      l.courant = par_.courant / signal_[i], l.courantParticle = i;
+    const double* a = &k1_.dv[3 * i];
+    const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    if (a2 > 0.0 && par_.forceFactor * std::sqrt(s_.h[i] / std::sqrt(a2)) < l.force)
+      l.force = par_.forceFactor * std::sqrt(s_.h[i] / std::sqrt(a2)), l.forceParticle = i;
+  }
+  return l;
 }
 
 void SphSolver::restore(double time, std::size_t steps, double nextStep) {
@@ -479,6 +495,7 @@ double SphSolver::step(double dt) {
       if (e > err)
         err = e, worst = i;
     }
+    record_.attempts = attempt + 1;
     if (err <= par_.errorTolerance)
       break;
     dt *= std::max(0.1, 0.9 * std::sqrt(par_.errorTolerance / err));
@@ -505,7 +522,9 @@ double SphSolver::step(double dt) {
   settle(s_, p_, c_);
   const double signal = computeRates(s_, p_, c_, k1_);
   const double grow = err > 0.0 ? std::min(2.0, 0.9 * std::sqrt(par_.errorTolerance / err)) : 2.0;
-  stableStep_ = std::min(limitStep(s_, k1_, signal), dt * std::max(grow, 1.0));
+  const double limit = limitStep(s_, k1_, signal);
+  stableStep_ = std::min(limit, dt * std::max(grow, 1.0));
+  record_.error = err, record_.worst = worst, record_.errorCapped = stableStep_ < limit;
   time_ += dt;
   ++steps_;
   return dt;

@@ -22,6 +22,7 @@
 #include "sph/SphState.h"
 #include "sph/WallBoundary.h"
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -51,6 +52,22 @@ public:
   const std::vector<double>& pressure() const { return p_; }
   const std::vector<double>& soundSpeed() const { return c_; }
   double stableStep() const { return stableStep_; }
+  // How the last step went (diagnostics): tries (1: taken at once), its Euler–Heun error and
+  // the particle with the largest, and whether the step size proposed next was held back by
+  // the error control's growth cap rather than by the Courant and force limits.
+  struct StepRecord {
+    int attempts = 0;
+    double error = 0.0;
+    std::size_t worst = 0;
+    bool errorCapped = false;
+  };
+  const StepRecord& lastStep() const { return record_; }
+  // The Courant and force limits of the current state and the particles that set them.
+  struct Limits {
+    double courant = INFINITY, force = INFINITY;
+    std::size_t courantParticle = 0, forceParticle = 0;
+  };
+  Limits limits() const;
   double kineticEnergy() const { return craterkit::kineticEnergy(s_); }
   double internalEnergy() const { return craterkit::internalEnergy(s_); }
   // In the uniform field and the point mass.
@@ -96,8 +113,10 @@ private:
   SphState mid_; // the predictor stage (members: reused, not reallocated, each step)
   Rates k2_;
   std::vector<double> pm_, cm_;
-  std::vector<double> p_, c_;  // pressure and sound speed of the current state
-  mutable WallBoundary walls_; // rigid particles' pressure (its cache follows the list)
+  std::vector<double> p_, c_;          // pressure and sound speed of the current state
+  mutable WallBoundary walls_;         // rigid particles' pressure (its cache follows the list)
+  mutable std::vector<double> signal_; // each particle's signal speed over h/2 (last rates)
+  StepRecord record_;
   double time_ = 0.0, stableStep_ = 0.0;
   std::size_t steps_ = 0;
   bool late_ = false;
