@@ -110,6 +110,32 @@ void traceStep(std::FILE* f, const SphSolver& solver, double dt, std::size_t bui
   std::fprintf(f, "\n");
 }
 
+// The particles' own stable steps in power-of-two bins of the smallest, by material, and the
+// rate evaluations per unit time individual (block) steps would need against one step for all.
+void stepBins(const SphSolver& solver) {
+  const std::vector<double> dt = solver.particleSteps();
+  const SphState& s = solver.state();
+  double dmin = INFINITY;
+  for (double d : dt)
+    dmin = std::min(dmin, d);
+  std::size_t count[3][40] = {};
+  double work = 0.0;
+  for (std::size_t i = 0; i < dt.size(); ++i) {
+    const int b = std::isfinite(dt[i])
+                      ? std::min(39, static_cast<int>(std::floor(std::log2(dt[i] / dmin))))
+                      : 39;
+    ++count[std::min(2, s.material[i])][b];
+    work += std::ldexp(1.0, -b);
+  }
+  std::printf("smallest particle step %.4g s; bin k holds steps in [2^k, 2^(k+1)) of it\n", dmin);
+  for (int b = 0; b < 40; ++b)
+    if (count[0][b] + count[1][b] + count[2][b] > 0)
+      std::printf("bin %2d: impactor %zu, target %zu, container %zu\n", b, count[0][b], count[1][b],
+                  count[2][b]);
+  std::printf("block steps: %.4f of the particle updates of one step for all\n",
+              work / static_cast<double>(dt.size()));
+}
+
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "pysph-impact3d")
     return pysphImpact3d(argc > 2 ? std::atoi(argv[2]) : 100, argc > 3 ? std::atof(argv[3]) : 3.9,
@@ -167,6 +193,8 @@ int main(int argc, char** argv) {
   const double E0 = solver.totalEnergy();
   const auto t0 = std::chrono::steady_clock::now();
   double nextReport = 0.0;
+  if (std::getenv("CK_STEP_BINS")) // how individual power-of-two steps would share the work
+    stepBins(solver);
   const std::size_t builds0 = solver.neighbourBuilds();
   while (solver.time() < end &&
          (maxSteps < 0 || solver.steps() - steps0 < static_cast<std::size_t>(maxSteps))) {
@@ -199,6 +227,12 @@ int main(int argc, char** argv) {
   const std::size_t taken = solver.steps() - steps0;
   std::printf("%zu steps in %.2f s: %.3g particle-steps/s (%zu neighbour-list builds)\n", taken,
               wall, static_cast<double>(n) * taken / wall, solver.neighbourBuilds() - builds0);
+  {
+    double P[3];
+    solver.totalMomentum(P);
+    std::printf("end: t = %.9e s, %zu steps, E = %.12e J, P = (%.9e, %.9e, %.9e) kg m/s\n",
+                solver.time(), solver.steps(), solver.totalEnergy(), P[0], P[1], P[2]);
+  }
   if (save)
     writeSphCheckpoint(save, solver.state(), solver.time(), solver.steps(), solver.stableStep());
   if (trace)
