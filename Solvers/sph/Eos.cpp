@@ -45,7 +45,11 @@ double EquationOfState::pressure(double rho, double u) const {
   case Model::Tillotson:
     return tillotsonPressure(tillotson, rho, u);
   case Model::Murnaghan:
-    return murnaghanK0 / murnaghanN * (std::pow(rho / murnaghanRho0, murnaghanN) - 1.0);
+    // n = 1 (the late stage's linear law) without pow, which gives x¹ exactly anyway: the same
+    // bits at a tenth of the cost, evaluated for every particle twice a step.
+    return murnaghanK0 / murnaghanN *
+           ((murnaghanN == 1.0 ? rho / murnaghanRho0 : std::pow(rho / murnaghanRho0, murnaghanN)) -
+            1.0);
   case Model::IdealGas:
     return (gamma - 1.0) * rho * u;
   case Model::StiffenedGas:
@@ -89,7 +93,8 @@ double EquationOfState::soundSpeed(double rho, double u) const {
     c2 = gamma * (gamma - 1.0) * u;
     break;
   case Model::Murnaghan:
-    c2 = murnaghanK0 / murnaghanRho0 * std::pow(rho / murnaghanRho0, murnaghanN - 1.0);
+    c2 = murnaghanK0 / murnaghanRho0 *
+         (murnaghanN == 1.0 ? 1.0 : std::pow(rho / murnaghanRho0, murnaghanN - 1.0)); // x⁰ = 1
     break;
   case Model::StiffenedGas:
     c2 = stiffC0 * stiffC0 + (stiffGamma - 1.0) * (u + pressure(rho, u) / rho);

@@ -41,6 +41,9 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
   }
   checkState(s_, par_);
   const std::size_t n = s_.size();
+  massCbrt_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    massCbrt_[i] = std::cbrt(s_.mass[i]);
   s_.h.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     s_.h[i] = smoothingLength(s_, i);
@@ -69,24 +72,29 @@ void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>&
       x = lo + (x - lo) - L * std::floor((x - lo) / L);
     }
   }
-  for (std::size_t i = 0; i < n; ++i)
-    s.h[i] = smoothingLength(s, i);
-  if (par_.summationDensity)
+  if (par_.summationDensity) {
+    for (std::size_t i = 0; i < n; ++i)
+      s.h[i] = smoothingLength(s, i);
     densityBySummation(s);
-  eosAndYield(s, p, c);
+  }
+  eosAndYield(s, p, c, !par_.summationDensity);
   if (par_.walls == SphParams::Walls::Extrapolated)
     walls_.apply(s, p, c, par_, nb_);
 }
 
-void SphSolver::eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c) const {
+void SphSolver::eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c,
+                            bool withH) const {
   const std::size_t n = s.size();
   p.resize(n);
   c.resize(n);
   std::vector<Rheology> rh;
   for (const Material& m : par_.materials)
     rh.emplace_back(m);
-#pragma omp parallel for schedule(static) if (n >= 512)
+    // Dynamic chunks: on a shared machine a thread that starts late does not hold up the other.
+#pragma omp parallel for schedule(dynamic, 1024) if (n >= 512)
   for (std::size_t i = 0; i < n; ++i) {
+    if (withH)
+      s.h[i] = smoothingLength(s, i);
     const Material& mat = par_.materials[static_cast<std::size_t>(s.material[i])];
     const Rheology& r = rh[static_cast<std::size_t>(s.material[i])];
     const double rho = s.rho[i], u = s.u[i];
@@ -134,7 +142,7 @@ void SphSolver::densityBySummation(SphState& s) const {
 }
 
 double SphSolver::smoothingLength(const SphState& s, std::size_t i) const {
-  const double m3 = std::cbrt(s.mass[i]), h = par_.kappa * m3 / std::cbrt(s.rho[i]);
+  const double m3 = massCbrt_[i], h = par_.kappa * m3 / std::cbrt(s.rho[i]);
   const double f = hCapFactor_[static_cast<std::size_t>(s.material[i])];
   return f > 0.0 ? std::min(h, f * m3) : h;
 }
@@ -263,6 +271,8 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
   const bool hasFlaws = !fracture_.empty();
   r.damage.rate.assign(hasFlaws ? n : 0, 0.0);
   r.damage.cap.assign(hasFlaws ? n : 0, 0.0);
+  signal_.resize(n);
+  double* const sigOut = signal_.data();
   std::vector<double> G(par_.materials.size());
   for (std::size_t m = 0; m < G.size(); ++m)
     G[m] = par_.materials[m].strength == Material::Strength::None ? 0.0
@@ -270,6 +280,9 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
   std::vector<char> rigidMat(par_.materials.size());
   for (std::size_t m = 0; m < rigidMat.size(); ++m)
     rigidMat[m] = par_.materials[m].rigid;
+  if (rigidBuild_ != nb_.builds())
+    filterRigidPairs(s);
+  const std::int32_t* const rigidSlot = rigidSlot_.empty() ? nullptr : rigidSlot_.data();
   // reused: no allocation in the step loop; workers use Pp and Xp
   static thread_local std::vector<Packed> P;
   static thread_local std::vector<PairPosition> X;
@@ -322,10 +335,14 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
     double signal = A.c;
     PairConstants pcA = pc;
     pcA.gradOn = solid ? 1.0 : 0.0;
-    const std::uint32_t first = nb_.start()[a];
     Scratch& w = scratch[omp_get_thread_num()];
-    const std::uint32_t* entries = nb_.entry().data() + first;
-    const std::uint32_t count = nb_.start()[a + 1] - first, self = static_cast<std::uint32_t>(a);
+    const std::int32_t slot = rigidSlot ? rigidSlot[a] : -1;
+    const std::uint32_t first =
+        slot < 0 ? nb_.start()[a] : rigidStart_[static_cast<std::size_t>(slot)];
+    const std::uint32_t* entries = (slot < 0 ? nb_.entry().data() : rigidEntry_.data()) + first;
+    const std::uint32_t last =
+        slot < 0 ? nb_.start()[a + 1] : rigidStart_[static_cast<std::size_t>(slot) + 1];
+    const std::uint32_t count = last - first, self = static_cast<std::uint32_t>(a);
     const std::size_t m = pc.periodic ? supportStream<true>(Xp, self, entries, count, w, pc)
                           : wide      ? supportStreamWide(Xp, self, entries, count, w)
                                       : supportStream<false>(Xp, self, entries, count, w, pc);
@@ -356,9 +373,47 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
     if (hasFlaws && fracture_.hasFlaws(a))
       fracture_.damageRate(a, par_.materials[static_cast<std::size_t>(s.material[a])], Sa, p[a],
                            s.damage[a], s.rho[a], s.mass[a], r.damage.rate[a], r.damage.cap[a]);
-    maxSignal = std::max(maxSignal, signal / (0.5 * s.h[a]));
+    sigOut[a] = signal / (0.5 * s.h[a]);
+    maxSignal = std::max(maxSignal, sigOut[a]);
   }
   return maxSignal;
+}
+
+void SphSolver::filterRigidPairs(const SphState& s) const {
+  const std::size_t n = s.size();
+  std::vector<char> rigidMat(par_.materials.size());
+  bool any = false;
+  for (std::size_t m = 0; m < rigidMat.size(); ++m)
+    any = any || (rigidMat[m] = par_.materials[m].rigid);
+  rigidBuild_ = nb_.builds();
+  rigidSlot_.assign(any ? n : 0, -1);
+  rigidStart_.assign(1, 0);
+  rigidEntry_.clear();
+  if (!any)
+    return;
+  // Rigid particles keep their velocity (their acceleration is zero), so a pair of them at the
+  // same velocity has v_ab = 0 exactly for as long as the list lasts: every pair term carries
+  // v_ab (continuity, energy, velocity gradient, the viscosity and its signal) or is discarded
+  // (the acceleration of a rigid particle), so it adds exact zeros. In a container three
+  // spacings thick such pairs are about a fifth of all listed ones.
+  const auto isRigid = [&](std::size_t i) {
+    return rigidMat[static_cast<std::size_t>(s.material[i])] != 0;
+  };
+  const auto sameVelocity = [&](std::size_t a, std::size_t b) {
+    return s.v[3 * a] == s.v[3 * b] && s.v[3 * a + 1] == s.v[3 * b + 1] &&
+           s.v[3 * a + 2] == s.v[3 * b + 2];
+  };
+  for (std::size_t a = 0; a < n; ++a) {
+    if (!isRigid(a))
+      continue;
+    rigidSlot_[a] = static_cast<std::int32_t>(rigidStart_.size() - 1);
+    for (std::uint32_t e = nb_.start()[a]; e < nb_.start()[a + 1]; ++e) {
+      const std::size_t b = nb_.entry()[e] / 32;
+      if (!isRigid(b) || !sameVelocity(a, b))
+        rigidEntry_.push_back(nb_.entry()[e]);
+    }
+    rigidStart_.push_back(static_cast<std::uint32_t>(rigidEntry_.size()));
+  }
 }
 
 double SphSolver::computeRates(const SphState& s, const std::vector<double>& p,
@@ -377,6 +432,32 @@ double SphSolver::limitStep(const SphState& s, const Rates& r, double maxSignal)
                       r.dv[3 * i + 2] * r.dv[3 * i + 2];
     if (a2 > 0.0)
       dt = std::min(dt, par_.forceFactor * std::sqrt(s.h[i] / std::sqrt(a2)));
+  }
+  return dt;
+}
+
+SphSolver::Limits SphSolver::limits() const {
+  Limits l;
+  for (std::size_t i = 0; i < s_.size(); ++i) {
+    if (i < signal_.size() && signal_[i] > 0.0 && par_.courant / signal_[i] < l.courant)
+      l.courant = par_.courant / signal_[i], l.courantParticle = i;
+    const double* a = &k1_.dv[3 * i];
+    const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    if (a2 > 0.0 && par_.forceFactor * std::sqrt(s_.h[i] / std::sqrt(a2)) < l.force)
+      l.force = par_.forceFactor * std::sqrt(s_.h[i] / std::sqrt(a2)), l.forceParticle = i;
+  }
+  return l;
+}
+
+std::vector<double> SphSolver::particleSteps() const {
+  std::vector<double> dt(s_.size(), INFINITY);
+  for (std::size_t i = 0; i < s_.size(); ++i) {
+    if (i < signal_.size() && signal_[i] > 0.0)
+      dt[i] = par_.courant / signal_[i];
+    const double* a = &k1_.dv[3 * i];
+    const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    if (a2 > 0.0)
+      dt[i] = std::min(dt[i], par_.forceFactor * std::sqrt(s_.h[i] / std::sqrt(a2)));
   }
   return dt;
 }
@@ -437,18 +518,23 @@ double SphSolver::step(double dt) {
     // bring an unlisted pair into range; the margin covers several steps.
     if (!nb_.valid(s_, par_, k1_.dx, k1_.dv, dt))
       nb_.build(s_, par_, k1_.dx, dt);
-    mid = s_;
+    // The predictor's fields are written from the state's (masses and materials never change,
+    // h is set by settle): no copy of the whole state at every try.
+    if (mid.size() != n)
+      mid = s_;
+    mid.alpha = s_.alpha, mid.damage = s_.damage;
     for (std::size_t i = 0; i < 3 * n; ++i) {
-      mid.x[i] += dt * (s_.v[i] + (xs ? k1_.dx[i] : 0.0));
-      mid.v[i] += dt * k1_.dv[i];
+      mid.x[i] = s_.x[i] + dt * (s_.v[i] + (xs ? k1_.dx[i] : 0.0));
+      mid.v[i] = s_.v[i] + dt * k1_.dv[i];
     }
     for (std::size_t i = 0; i < n; ++i) {
-      if (!par_.summationDensity)
-        mid.rho[i] = std::max({floorOf(s_, i), 1e-6 * s_.rho[i], mid.rho[i] + dt * k1_.drho[i]});
-      mid.u[i] = std::max(0.0, mid.u[i] + dt * k1_.du[i]);
+      mid.rho[i] = par_.summationDensity
+                       ? s_.rho[i]
+                       : std::max({floorOf(s_, i), 1e-6 * s_.rho[i], s_.rho[i] + dt * k1_.drho[i]});
+      mid.u[i] = std::max(0.0, s_.u[i] + dt * k1_.du[i]);
     }
     for (std::size_t i = 0; i < 6 * n; ++i)
-      mid.S[i] += dt * k1_.dS[i];
+      mid.S[i] = s_.S[i] + dt * k1_.dS[i];
     GradyKippFracture::integrate(mid.damage, s_.damage, dt, k1_.damage, nullptr);
     settle(mid, pm, cm);
     computeRates(mid, pm, cm, k2);
@@ -483,6 +569,7 @@ double SphSolver::step(double dt) {
       if (e > err)
         err = e, worst = i;
     }
+    record_.attempts = attempt + 1;
     if (err <= par_.errorTolerance)
       break;
     dt *= std::max(0.1, 0.9 * std::sqrt(par_.errorTolerance / err));
@@ -509,7 +596,9 @@ double SphSolver::step(double dt) {
   settle(s_, p_, c_);
   const double signal = computeRates(s_, p_, c_, k1_);
   const double grow = err > 0.0 ? std::min(2.0, 0.9 * std::sqrt(par_.errorTolerance / err)) : 2.0;
-  stableStep_ = std::min(limitStep(s_, k1_, signal), dt * std::max(grow, 1.0));
+  const double limit = limitStep(s_, k1_, signal);
+  stableStep_ = std::min(limit, dt * std::max(grow, 1.0));
+  record_.error = err, record_.worst = worst, record_.errorCapped = stableStep_ < limit;
   time_ += dt;
   ++steps_;
   return dt;

@@ -22,6 +22,7 @@
 #include "sph/SphState.h"
 #include "sph/WallBoundary.h"
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -51,6 +52,25 @@ public:
   const std::vector<double>& pressure() const { return p_; }
   const std::vector<double>& soundSpeed() const { return c_; }
   double stableStep() const { return stableStep_; }
+  // How the last step went (diagnostics): tries (1: taken at once), its Euler–Heun error and
+  // the particle with the largest, and whether the step size proposed next was held back by
+  // the error control's growth cap rather than by the Courant and force limits.
+  struct StepRecord {
+    int attempts = 0;
+    double error = 0.0;
+    std::size_t worst = 0;
+    bool errorCapped = false;
+  };
+  const StepRecord& lastStep() const { return record_; }
+  // The Courant and force limits of the current state and the particles that set them.
+  struct Limits {
+    double courant = INFINITY, force = INFINITY;
+    std::size_t courantParticle = 0, forceParticle = 0;
+  };
+  Limits limits() const;
+  // Each particle's own stable step (its Courant and force limits) in the current state: what
+  // individual time steps would allow it.
+  std::vector<double> particleSteps() const;
   double kineticEnergy() const { return craterkit::kineticEnergy(s_); }
   double internalEnergy() const { return craterkit::internalEnergy(s_); }
   // In the uniform field and the point mass.
@@ -71,7 +91,8 @@ private:
   // Positions into the periodic box, h from ρ, ρ by summation when asked, then pressure and
   // sound speed into p and c and the yield limit on the deviatoric stress.
   void settle(SphState& s, std::vector<double>& p, std::vector<double>& c) const;
-  void eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c) const;
+  // With `withH`, each particle's h from its density first, in the same pass.
+  void eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c, bool withH) const;
   void densityBySummation(SphState& s) const;
   double smoothingLength(const SphState& s, std::size_t i) const; // κ (m/ρ)^{1/3}, capped
   // Rates of s; returns the largest signal speed over h/2.
@@ -81,6 +102,9 @@ private:
                                              const std::vector<double>& c, Rates& r) const;
   template <class K> void summation(SphState& s) const;
   double limitStep(const SphState& s, const Rates& r, double maxSignal) const;
+  // The list entries the pair terms visit for a rigid particle: those of partners that are not
+  // rigid at the same velocity (a pair of walls at rest adds only exact zeros). Follows the list.
+  void filterRigidPairs(const SphState& s) const;
   void imageShift(std::uint32_t code, double d[3]) const;
 
   SphState s_;
@@ -89,6 +113,7 @@ private:
   GradyKippFracture fracture_;
   std::vector<double> hCapFactor_; // per material: κ (α0/ρ0)^{1/3} × the growth cap (0: none)
   std::vector<double> rhoFloor_;   // per material: the density floor, kg/m³ (0: none)
+  std::vector<double> massCbrt_;   // m^{1/3} per particle (masses do not change)
   double floorOf(const SphState& s, std::size_t i) const {
     return rhoFloor_[static_cast<std::size_t>(s.material[i])];
   }
@@ -98,6 +123,14 @@ private:
   std::vector<double> pm_, cm_;
   std::vector<double> p_, c_;  // pressure and sound speed of the current state
   mutable WallBoundary walls_; // rigid particles' pressure (its cache follows the list)
+  // Rigid particles' entries without their rigid partners at the same velocity (CSR over the
+  // rigid particles in order; rigidSlot_ maps a particle to its row, or -1), for list build
+  // rigidBuild_.
+  mutable std::vector<std::uint32_t> rigidStart_, rigidEntry_;
+  mutable std::vector<std::int32_t> rigidSlot_;
+  mutable std::size_t rigidBuild_ = 0;
+  mutable std::vector<double> signal_; // each particle's signal speed over h/2 (last rates)
+  StepRecord record_;
   double time_ = 0.0, stableStep_ = 0.0;
   std::size_t steps_ = 0;
   bool late_ = false;

@@ -8,7 +8,14 @@
 // container), CK_LATE_STAGE ("TIME SOUND_SPEED": the late-stage scheme). The SCI example's
 // SPH stage at its ctest size: CK_GRAVITY=1000 CK_CONTAINER=1 CK_LATE_STAGE="1e-3 317"
 // ck_sph_bench 0.02 2 0.8.
+// The graded SCI target at Ryugu's gravity (the slow validation's SPH stage) adds
+// CK_COARSENING (SPHImpact's TargetCoarsening) and CK_DOMAIN_RADIUS (m): CK_GRAVITY=1.5e-4
+// CK_CONTAINER=1 CK_LATE_STAGE="1e-3 0.46637" CK_COARSENING=15 CK_DOMAIN_RADIUS=29
+// ck_sph_bench 196 2 11.6. A window of it: CK_RESUME (a checkpoint of that set-up to start
+// from), CK_STEPS (stop after this many steps), CK_SAVE (write a checkpoint there at the end
+// and every CK_SAVE_EVERY steps), CK_TRACE (a file: one line per step with what set its size).
 #include "sph/ImpactSetup.h"
+#include "sph/SphRun.h"
 #include "sph/SphSolver.h"
 
 #include <chrono>
@@ -79,6 +86,56 @@ int pysphImpact3d(int steps, double kappa, bool wendland) {
 }
 } // namespace
 
+// One line per step: step, t, dt, tries, list builds; the Euler–Heun error, its particle and
+// whether the error control held the next step back; the Courant and force limits of the new
+// state and their particles (each: index, material, h, speed, distance from the impact point).
+void traceStep(std::FILE* f, const SphSolver& solver, double dt, std::size_t builds) {
+  const SphState& s = solver.state();
+  const SphSolver::StepRecord& r = solver.lastStep();
+  const SphSolver::Limits l = solver.limits();
+  auto who = [&](std::size_t i) {
+    const double* v = &s.v[3 * i];
+    const double* x = &s.x[3 * i];
+    std::fprintf(f, " %zu %d %.4g %.4g %.4g", i, s.material[i], s.h[i],
+                 std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]),
+                 std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]));
+  };
+  std::fprintf(f, "%zu %.6e %.4e %d %zu %.3e %d", solver.steps(), solver.time(), dt, r.attempts,
+               builds, r.error, r.errorCapped ? 1 : 0);
+  who(r.worst);
+  std::fprintf(f, " %.4e", l.courant);
+  who(l.courantParticle);
+  std::fprintf(f, " %.4e", l.force);
+  who(l.forceParticle);
+  std::fprintf(f, "\n");
+}
+
+// The particles' own stable steps in power-of-two bins of the smallest, by material, and the
+// rate evaluations per unit time individual (block) steps would need against one step for all.
+void stepBins(const SphSolver& solver) {
+  const std::vector<double> dt = solver.particleSteps();
+  const SphState& s = solver.state();
+  double dmin = INFINITY;
+  for (double d : dt)
+    dmin = std::min(dmin, d);
+  std::size_t count[3][40] = {};
+  double work = 0.0;
+  for (std::size_t i = 0; i < dt.size(); ++i) {
+    const int b = std::isfinite(dt[i])
+                      ? std::min(39, static_cast<int>(std::floor(std::log2(dt[i] / dmin))))
+                      : 39;
+    ++count[std::min(2, s.material[i])][b];
+    work += std::ldexp(1.0, -b);
+  }
+  std::printf("smallest particle step %.4g s; bin k holds steps in [2^k, 2^(k+1)) of it\n", dmin);
+  for (int b = 0; b < 40; ++b)
+    if (count[0][b] + count[1][b] + count[2][b] > 0)
+      std::printf("bin %2d: impactor %zu, target %zu, container %zu\n", b, count[0][b], count[1][b],
+                  count[2][b]);
+  std::printf("block steps: %.4f of the particle updates of one step for all\n",
+              work / static_cast<double>(dt.size()));
+}
+
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "pysph-impact3d")
     return pysphImpact3d(argc > 2 ? std::atoi(argv[2]) : 100, argc > 3 ? std::atof(argv[3]) : 3.9,
@@ -98,6 +155,8 @@ int main(int argc, char** argv) {
     setup.surfaceGravity = std::atof(e);
   if (const char* e = std::getenv("CK_CONTAINER"))
     setup.container = std::atoi(e) != 0;
+  if (const char* e = std::getenv("CK_COARSENING"))
+    setup.coarsening = std::atof(e);
   setup.frictionAngle = 30.0;
   setup.cohesion = 0.0;
   SphImpactProblem prob = buildImpact(setup);
@@ -109,8 +168,22 @@ int main(int argc, char** argv) {
     if (const char* c = std::strchr(e, ' '))
       prob.params.lateStageSoundSpeed = std::atof(c + 1);
   }
+  if (const char* e = std::getenv("CK_DOMAIN_RADIUS"))
+    prob.params.domainRadius = std::atof(e);
+  const char* resume = std::getenv("CK_RESUME");
+  const char* save = std::getenv("CK_SAVE");
+  const long long saveEvery =
+      std::getenv("CK_SAVE_EVERY") ? std::atoll(std::getenv("CK_SAVE_EVERY")) : 0;
+  const long long maxSteps = std::getenv("CK_STEPS") ? std::atoll(std::getenv("CK_STEPS")) : -1;
+  std::FILE* trace = std::getenv("CK_TRACE") ? std::fopen(std::getenv("CK_TRACE"), "a") : nullptr;
 
+  double t0Resume = 0.0, nextStep = 0.0;
+  std::size_t steps0 = 0;
+  if (resume)
+    prob.state = readSphCheckpoint(resume, t0Resume, steps0, nextStep);
   SphSolver solver(prob.state, prob.params);
+  if (resume)
+    solver.restore(t0Resume, steps0, nextStep);
   const std::size_t n = prob.state.size();
   std::printf(
       "SCI-like SPH: %zu particles (%zu impactor), dx = %.4g m, %d threads, to t = %.3g s\n", n,
@@ -120,8 +193,17 @@ int main(int argc, char** argv) {
   const double E0 = solver.totalEnergy();
   const auto t0 = std::chrono::steady_clock::now();
   double nextReport = 0.0;
-  while (solver.time() < end) {
-    solver.step(std::min(solver.stableStep(), end - solver.time()));
+  if (std::getenv("CK_STEP_BINS")) // how individual power-of-two steps would share the work
+    stepBins(solver);
+  const std::size_t builds0 = solver.neighbourBuilds();
+  while (solver.time() < end &&
+         (maxSteps < 0 || solver.steps() - steps0 < static_cast<std::size_t>(maxSteps))) {
+    const std::size_t before = solver.neighbourBuilds();
+    const double dt = solver.step(std::min(solver.stableStep(), end - solver.time()));
+    if (trace)
+      traceStep(trace, solver, dt, solver.neighbourBuilds() - before);
+    if (save && saveEvery > 0 && (solver.steps() - steps0) % saveEvery == 0)
+      writeSphCheckpoint(save, solver.state(), solver.time(), solver.steps(), solver.stableStep());
     if (solver.time() >= nextReport || solver.time() >= end) {
       double P[3], vmax = 0.0, pmax = 0.0, amin = 10.0;
       solver.totalMomentum(P);
@@ -142,7 +224,17 @@ int main(int argc, char** argv) {
     }
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("%zu steps in %.2f s: %.3g particle-steps/s (%zu neighbour-list builds)\n",
-              solver.steps(), wall, static_cast<double>(n) * solver.steps() / wall,
-              solver.neighbourBuilds());
+  const std::size_t taken = solver.steps() - steps0;
+  std::printf("%zu steps in %.2f s: %.3g particle-steps/s (%zu neighbour-list builds)\n", taken,
+              wall, static_cast<double>(n) * taken / wall, solver.neighbourBuilds() - builds0);
+  {
+    double P[3];
+    solver.totalMomentum(P);
+    std::printf("end: t = %.9e s, %zu steps, E = %.12e J, P = (%.9e, %.9e, %.9e) kg m/s\n",
+                solver.time(), solver.steps(), solver.totalEnergy(), P[0], P[1], P[2]);
+  }
+  if (save)
+    writeSphCheckpoint(save, solver.state(), solver.time(), solver.steps(), solver.stableStep());
+  if (trace)
+    std::fclose(trace);
 }
