@@ -101,7 +101,10 @@ private:
   template <class K, bool Xsph> double rates(const SphState& s, const std::vector<double>& p,
                                              const std::vector<double>& c, Rates& r) const;
   template <class K> void summation(SphState& s) const;
+  // sph/StepControl.cpp: the Courant and force limits, and the largest relative Euler–Heun
+  // difference of a step of dt whose predictor's rates are k2 (worst: its particle).
   double limitStep(const SphState& s, const Rates& r, double maxSignal) const;
+  double stepError(double dt, const Rates& k2, std::size_t& worst) const;
   // The list entries the pair terms visit for a rigid particle: those of partners that are not
   // rigid at the same velocity (a pair of walls at rest adds only exact zeros). Follows the list.
   void filterRigidPairs(const SphState& s) const;

@@ -1,0 +1,83 @@
+// The time-step control of SphSolver (docs/physics.md §2.8): the Courant and force limits
+// (Monaghan 1989; Δt ≤ C h / v_sig and Δt ≤ f sqrt(h / |a|)), each particle's own limit (what
+// individual time steps would allow it), and the error of Heun's step against its Euler
+// predictor, relative to each particle's own scales, that decides whether a step is taken
+// again, shorter (as miluphcuda's adaptive RK2 does).
+#include "sph/SphSolver.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace craterkit {
+
+double SphSolver::limitStep(const SphState& s, const Rates& r, double maxSignal) const {
+  double dt = maxSignal > 0.0 ? par_.courant / maxSignal : INFINITY;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double a2 = r.dv[3 * i] * r.dv[3 * i] + r.dv[3 * i + 1] * r.dv[3 * i + 1] +
+                      r.dv[3 * i + 2] * r.dv[3 * i + 2];
+    if (a2 > 0.0)
+      dt = std::min(dt, par_.forceFactor * std::sqrt(s.h[i] / std::sqrt(a2)));
+  }
+  return dt;
+}
+
+SphSolver::Limits SphSolver::limits() const {
+  Limits l;
+  for (std::size_t i = 0; i < s_.size(); ++i) {
+    if (i < signal_.size() && signal_[i] > 0.0 && par_.courant / signal_[i] < l.courant)
+      l.courant = par_.courant / signal_[i], l.courantParticle = i;
+    const double* a = &k1_.dv[3 * i];
+    const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    if (a2 > 0.0 && par_.forceFactor * std::sqrt(s_.h[i] / std::sqrt(a2)) < l.force)
+      l.force = par_.forceFactor * std::sqrt(s_.h[i] / std::sqrt(a2)), l.forceParticle = i;
+  }
+  return l;
+}
+
+std::vector<double> SphSolver::particleSteps() const {
+  std::vector<double> dt(s_.size(), INFINITY);
+  for (std::size_t i = 0; i < s_.size(); ++i) {
+    if (i < signal_.size() && signal_[i] > 0.0)
+      dt[i] = par_.courant / signal_[i];
+    const double* a = &k1_.dv[3 * i];
+    const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    if (a2 > 0.0)
+      dt[i] = std::min(dt[i], par_.forceFactor * std::sqrt(s_.h[i] / std::sqrt(a2)));
+  }
+  return dt;
+}
+
+double SphSolver::stepError(double dt, const Rates& k2, std::size_t& worst) const {
+  const std::size_t n = s_.size();
+  double err = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double dv2 = 0.0, v2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double d = k2.dv[3 * i + k] - k1_.dv[3 * i + k];
+      dv2 += d * d;
+      v2 += s_.v[3 * i + k] * s_.v[3 * i + k];
+    }
+    const double c = c_[i];
+    const double ev = 0.5 * dt * std::sqrt(dv2) / std::max({c, std::sqrt(v2), 1e-30});
+    // Density: Heun's against Euler's, unless both come out below the floor and are held
+    // there (material dilating past it sets no step); a step that would leave a density
+    // without a floor at or below zero is taken again, shorter.
+    double er = 0.0;
+    if (!par_.summationDensity) {
+      const double fl = floorOf(s_, i);
+      const double heun = s_.rho[i] + 0.5 * dt * (k1_.drho[i] + k2.drho[i]);
+      const double euler = s_.rho[i] + dt * k1_.drho[i];
+      if (fl <= 0.0 && !(heun > 0.0))
+        er = INFINITY;
+      else if (!(fl > 0.0 && heun <= fl && euler <= fl))
+        er = 0.5 * dt * std::abs(k2.drho[i] - k1_.drho[i]) / s_.rho[i];
+    }
+    const double eu = 0.5 * dt * std::abs(k2.du[i] - k1_.du[i]) / (s_.u[i] + c * c + 1e-30);
+    const double e = std::max({ev, er, eu});
+    if (e > err)
+      err = e, worst = i;
+  }
+  return err;
+}
+
+} // namespace craterkit
