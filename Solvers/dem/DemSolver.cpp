@@ -199,8 +199,25 @@ void DemSolver::buildNeighbourList() {
 
 // ---------------------------------------------------------------------------------------------
 void DemSolver::computeForces(double kick, bool openNext) {
+  prepareForces();
 #pragma omp parallel if (n_ >= kDemParallelMin)
   forcePhases(kick, openNext);
+  current_ = 1 - current_;
+}
+
+// Before a parallel region that evaluates forces, so that the region needs no `single` for
+// it: room for the per-thread results of as many threads as the region can have.
+void DemSolver::prepareForces() {
+#ifdef _OPENMP
+  const std::size_t most = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
+#else
+  const std::size_t most = 1;
+#endif
+  if (touching_.size() < most)
+    touching_.resize(most);
+  touchingStart_.assign(most + 1, 0);
+  worstOverlap_ = 0.0;
+  movedNext_ = 0.0;
 }
 
 void DemSolver::forcePhases(double kick, bool openNext) {
@@ -220,13 +237,6 @@ void DemSolver::forcePhases(double kick, bool openNext) {
 // (dem/TouchingPairs.h), then writes its rows after those of the threads before it.
 void DemSolver::collectContacts() {
   const int threads = threadCount(), me = threadNumber();
-#pragma omp single
-  {
-    touching_.resize(static_cast<std::size_t>(threads));
-    touchingStart_.assign(static_cast<std::size_t>(threads) + 1, 0);
-    worstOverlap_ = 0.0;
-    movedNext_ = 0.0;
-  }
   const ContactTable& before = tables_[current_];
   ContactTable& now = tables_[1 - current_];
   const double* x = state_.position.data();
@@ -246,7 +256,7 @@ void DemSolver::collectContacts() {
   {
     for (std::size_t q = 0; q < t; ++q)
       touchingStart_[q + 1] += touchingStart_[q];
-    now.resize(touchingStart_.back());
+    now.resize(touchingStart_[t]);
     contactsOf_.resize(n_, pairs);
   }
   std::uint32_t* row = pairs_.row.data();
@@ -350,9 +360,7 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
     worstOverlap_ = std::max(worstOverlap_, worst);
     movedNext_ = std::max(movedNext_, moved);
   }
-#pragma omp barrier
-#pragma omp single
-  current_ = 1 - current_;
+  // The end of the parallel region is the barrier; its caller then swaps the tables.
 }
 
 // Without openNext the accelerations are kept for the next step's drift pass (and the
@@ -469,6 +477,7 @@ void DemSolver::advance(bool openNext) {
   const bool drifted = drifted_;
   drifted_ = false;
   moved_ = drifted ? movedNext_ : 0.0;
+  prepareForces();
   // The list holds while no particle has moved more than half the skin since its build.
   const auto listHolds = [this] {
     return std::isfinite(moved_) && std::sqrt(moved_) <= 0.5 * skin_;
@@ -480,7 +489,9 @@ void DemSolver::advance(bool openNext) {
     if (listHolds()) // the same answer on every thread: moved_ is complete after drift()
       forcePhases(h, openNext);
   }
-  if (!listHolds()) {
+  if (listHolds()) {
+    current_ = 1 - current_; // the forces of the region above
+  } else {
     // A non-finite position would poison the cell list: report it here.
     const std::vector<double>& x = state_.position;
     for (std::size_t i = 0; i < n_; ++i)

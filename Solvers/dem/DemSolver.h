@@ -121,8 +121,10 @@ private:
   // One step; with openNext, also the next step's opening half-kick and drift (the state
   // between the two steps is then never formed: only for steps nothing observes in between).
   void advance(bool openNext);
-  // computeForces opens a parallel region; the others run on every thread of one.
+  // computeForces opens a parallel region; the others run on every thread of one, after
+  // prepareForces (serial), and the caller swaps tables_ after the region.
   void computeForces(double kick, bool openNext = false);
+  void prepareForces();
   void drift();
   void forcePhases(double kick, bool openNext);
   void collectContacts();

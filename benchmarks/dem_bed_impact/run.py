@@ -213,9 +213,9 @@ def run_round(args, exe, work, bed, xyz, skip):
 
 
 def spread(values):
-    """'median (lowest-highest)' of a list of ratios."""
-    text = f"{statistics.median(values):.2f}x"
-    return text if len(values) == 1 else f"{text} ({min(values):.2f}-{max(values):.2f})"
+    """'median of N rounds, lowest-highest' of a list of per-round ratios."""
+    text = f"median of {len(values)} round(s)"
+    return text if len(values) == 1 else f"{text}, {min(values):.2f}-{max(values):.2f}"
 
 
 def report(rounds, ck, steps):
@@ -237,11 +237,10 @@ def report(rounds, ck, steps):
         ratios = "; ".join([f"1 -> 2 threads {scaling[k]:.2f}x"] +
                            [f"vs {code} {against[code][k]:.2f}x" for code in peers])
         log(f"  round {k + 1}: {figures}; {ratios}")
-    log(f"\nCraterKit speed-up 1 -> 2 threads: {statistics.median(scaling):.2f}x "
-        f"(median of {len(rounds)} rounds: {spread(scaling)})")
+    log(f"\nCraterKit speed-up 1 -> 2 threads: {statistics.median(scaling):.2f}x ({spread(scaling)})")
     for code in peers:
         log(f"CraterKit (2 threads) vs {code}: {statistics.median(against[code]):.2f}x faster "
-            f"(median of {len(rounds)} rounds: {spread(against[code])})")
+            f"({spread(against[code])})")
 
 
 def main():
