@@ -198,20 +198,37 @@ void DemSolver::buildNeighbourList() {
 }
 
 // ---------------------------------------------------------------------------------------------
-void DemSolver::computeForces(double kick) {
+void DemSolver::computeForces(double kick, bool openNext) {
+  prepareForces();
 #pragma omp parallel if (n_ >= kDemParallelMin)
-  forcePhases(kick);
+  forcePhases(kick, openNext);
+  current_ = 1 - current_;
 }
 
-void DemSolver::forcePhases(double kick) {
+// Before a parallel region that evaluates forces, so that the region needs no `single` for
+// it: room for the per-thread results of as many threads as the region can have.
+void DemSolver::prepareForces() {
+#ifdef _OPENMP
+  const std::size_t most = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
+#else
+  const std::size_t most = 1;
+#endif
+  if (touching_.size() < most)
+    touching_.resize(most);
+  touchingStart_.assign(most + 1, 0);
+  worstOverlap_ = 0.0;
+  movedNext_ = 0.0;
+}
+
+void DemSolver::forcePhases(double kick, bool openNext) {
   const ContactParams& c = params_.contact;
   if (c.normalModel == "Hertz") {
     const double E = c.youngsModulus / (1.0 - c.poissonRatio * c.poissonRatio);
     forcePhasesWith(Hertz{0.5 * E, dampingFactorN_, c.poissonRatio},
-                    Hertz{E, dampingFactorN_, c.poissonRatio}, kick);
+                    Hertz{E, dampingFactorN_, c.poissonRatio}, kick, openNext);
   } else {
     const LinearSpringDashpot law{c.kN, dampingFactorN_};
-    forcePhasesWith(law, law, kick);
+    forcePhasesWith(law, law, kick, openNext);
   }
 }
 
@@ -220,12 +237,6 @@ void DemSolver::forcePhases(double kick) {
 // (dem/TouchingPairs.h), then writes its rows after those of the threads before it.
 void DemSolver::collectContacts() {
   const int threads = threadCount(), me = threadNumber();
-#pragma omp single
-  {
-    touching_.resize(static_cast<std::size_t>(threads));
-    touchingStart_.assign(static_cast<std::size_t>(threads) + 1, 0);
-    worstOverlap_ = 0.0;
-  }
   const ContactTable& before = tables_[current_];
   ContactTable& now = tables_[1 - current_];
   const double* x = state_.position.data();
@@ -245,7 +256,7 @@ void DemSolver::collectContacts() {
   {
     for (std::size_t q = 0; q < t; ++q)
       touchingStart_[q + 1] += touchingStart_[q];
-    now.resize(touchingStart_.back());
+    now.resize(touchingStart_[t]);
     contactsOf_.resize(n_, pairs);
   }
   std::uint32_t* row = pairs_.row.data();
@@ -263,8 +274,8 @@ void DemSolver::collectContacts() {
 
 // Forces and torques at the current positions; with kick > 0 the closing half-kick of the
 // step (v += kick a) is applied in the gather, while the accelerations are in registers.
-template <class Law>
-void DemSolver::forcePhasesWith(const Law& pairLaw, const Law& wallLaw, double kick) {
+template <class Law> void DemSolver::forcePhasesWith(const Law& pairLaw, const Law& wallLaw,
+                                                     double kick, bool openNext) {
   collectContacts();
   const FrictionConstants fc(params_.contact);
   const std::size_t threads = static_cast<std::size_t>(threadCount());
@@ -277,12 +288,12 @@ void DemSolver::forcePhasesWith(const Law& pairLaw, const Law& wallLaw, double k
                                         rows * me / threads, rows * (me + 1) / threads);
   contactsOf_.index(now, pairs_.secondStart, n_, me, threads);
 #pragma omp barrier
-  gatherForces(wallLaw, fc, kick, worst);
+  gatherForces(wallLaw, fc, kick, openNext, worst);
 }
 
 // Each particle sums its pairs in contact in index order, then its walls in wall order.
 template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const FrictionConstants& fc,
-                                                  double kick, double worst) {
+                                                  double kick, bool openNext, double worst) {
   const ContactParams& cp = params_.contact;
   const double dt = params_.dt;
   const ParticleSet& s = state_;
@@ -295,6 +306,7 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
   WallContacts& wc = wallContacts_;
   const Gravity& gravity = params_.gravity;
   const bool uniform = gravity.type == Gravity::Type::Uniform;
+  double moved = 0.0;
   // Static: each thread gathers the particles it drifted, whose data its cache holds.
 #pragma omp for schedule(static) nowait
   for (std::size_t i = 0; i < n_; ++i) {
@@ -341,8 +353,24 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
     if (!uniform) // the common case needs no call
       gravity.acceleration(&x[3 * i], g);
     sphereAccelerations(f.data(), t.data(), m[i], inertia_[i], g, a, b);
-    double* v = &state_.velocity[3 * i];
-    double* w = &state_.angularVelocity[3 * i];
+    moved = std::max(moved, finishParticle(i, a, b, kick, openNext));
+  }
+#pragma omp critical(ck_dem_worst)
+  {
+    worstOverlap_ = std::max(worstOverlap_, worst);
+    movedNext_ = std::max(movedNext_, moved);
+  }
+  // The end of the parallel region is the barrier; its caller then swaps the tables.
+}
+
+// Without openNext the accelerations are kept for the next step's drift pass (and the
+// checkpoints); with it, that drift happens here, in drift()'s operations and order, and the
+// accelerations are not needed again.
+inline double DemSolver::finishParticle(std::size_t i, const double* a, const double* b,
+                                        double kick, bool openNext) {
+  double* v = &state_.velocity[3 * i];
+  double* w = &state_.angularVelocity[3 * i];
+  if (!openNext) {
     for (int k = 0; k < 3; ++k) {
       acc_[3 * i + k] = a[k];
       alpha_[3 * i + k] = b[k];
@@ -351,12 +379,26 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
         w[k] += kick * b[k];
       }
     }
+    return 0.0;
   }
-#pragma omp critical(ck_dem_worst)
-  worstOverlap_ = std::max(worstOverlap_, worst);
-#pragma omp barrier
-#pragma omp single
-  current_ = 1 - current_;
+  const double dt = params_.dt, h = 0.5 * dt;
+  double* x = &state_.position[3 * i];
+  const double* x0 = &refPos_[3 * i];
+  double* vp = &vPred_[3 * i];
+  double* wp = &wPred_[3 * i];
+  double d2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    v[k] += kick * a[k]; // this step's closing half-kick
+    w[k] += kick * b[k];
+    v[k] += h * a[k]; // the next step's opening half-kick and drift
+    w[k] += h * b[k];
+    x[k] += dt * v[k];
+    const double d = x[k] - x0[k];
+    d2 += d * d;
+    vp[k] = v[k] + h * a[k];
+    wp[k] = w[k] + h * b[k];
+  }
+  return d2;
 }
 
 template <class Law>
@@ -423,20 +465,33 @@ void DemSolver::drift() {
 #pragma omp barrier
 }
 
-void DemSolver::step() {
+void DemSolver::step() { advance(false); }
+
+void DemSolver::advanceSteps(long long steps) {
+  for (long long s = 0; s < steps; ++s)
+    advance(s + 1 < steps);
+}
+
+void DemSolver::advance(bool openNext) {
   const double dt = params_.dt, h = 0.5 * dt;
-  moved_ = 0.0;
+  const bool drifted = drifted_;
+  drifted_ = false;
+  moved_ = drifted ? movedNext_ : 0.0;
+  prepareForces();
   // The list holds while no particle has moved more than half the skin since its build.
   const auto listHolds = [this] {
     return std::isfinite(moved_) && std::sqrt(moved_) <= 0.5 * skin_;
   };
 #pragma omp parallel if (n_ >= kDemParallelMin)
   {
-    drift();
+    if (!drifted)
+      drift();
     if (listHolds()) // the same answer on every thread: moved_ is complete after drift()
-      forcePhases(h);
+      forcePhases(h, openNext);
   }
-  if (!listHolds()) {
+  if (listHolds()) {
+    current_ = 1 - current_; // the forces of the region above
+  } else {
     // A non-finite position would poison the cell list: report it here.
     const std::vector<double>& x = state_.position;
     for (std::size_t i = 0; i < n_; ++i)
@@ -449,8 +504,9 @@ void DemSolver::step() {
           throw std::runtime_error(msg.str());
         }
     buildNeighbourList();
-    computeForces(h);
+    computeForces(h, openNext);
   }
+  drifted_ = openNext;
   time_ += dt;
   ++step_;
   if (worstOverlap_ > params_.overlapWarning) {
@@ -491,11 +547,14 @@ long long DemSolver::advanceTo(double endTime, const ProgressCallback& progress,
   const long long total =
       std::max(0LL, static_cast<long long>(std::llround((endTime - start) / params_.dt)));
   const long long report = std::max(1LL, total / 200);
+  const bool checkpoints = !checkpointPath.empty() && checkpointEvery > 0;
   for (long long s = 0; s < total; ++s) {
     if (s % report == 0)
       reportProgress(progress, static_cast<double>(s) / total);
-    step();
-    if (!checkpointPath.empty() && checkpointEvery > 0 && step_ % checkpointEvery == 0)
+    // The next step may start inside this one unless the state is looked at in between.
+    const bool checkpoint = checkpoints && (step_ + 1) % checkpointEvery == 0;
+    advance(s + 1 < total && (s + 1) % report != 0 && !checkpoint);
+    if (checkpoint)
       writeCheckpoint(checkpointPath);
   }
   reportProgress(progress, 1.0);

@@ -5,11 +5,20 @@ A settled bed of monodisperse spheres (r = 5 cm, 2000 kg/m^3) in a box with grav
 sphere of twice the radius hitting it at 1 m/s. The same particles, contact law (linear
 spring-dashpot, tangential spring with Coulomb limit, rolling resistance; twisting where the
 code has it), time step and number of steps run in each code on 2 threads (CraterKit,
-OpenMP) or 2 MPI ranks (the peers); the step loop alone is timed. Prints particle-steps per
-second and the ratios.
+OpenMP) or 2 MPI ranks (the peers); the step loop alone is timed. CraterKit also runs on
+1 thread, for its speed-up from 1 to 2 threads. Prints particle-steps per second and the
+ratios.
 
-    benchmarks/dem_bed_impact/run.py                      # 100,000 particles, 1000 steps
-    benchmarks/dem_bed_impact/run.py --particles 20000 --steps 500
+Method: the machine's speed drifts by 15-50 % over minutes, more than the margins measured,
+so the codes run in rounds (--repeat N, default 3): each round runs CraterKit on 1 thread,
+CraterKit on 2 threads, LAMMPS and LIGGGHTS back to back, and every ratio is taken within
+its round (the 1- against the 2-thread run, the peer against CraterKit's 2-thread run), where
+the drift is smallest; the figures quoted are the medians of the per-round ratios (with their
+range), never a ratio of medians or of runs from different rounds. Every round's figures are
+printed. The table of seconds and particle-steps/s shows each code's median over the rounds.
+
+    benchmarks/dem_bed_impact/run.py                      # 100,000 particles, 1000 steps, 3 rounds
+    benchmarks/dem_bed_impact/run.py --particles 20000 --steps 500 --repeat 1
 
 The settled bed is cached in the build directory (settling 10^5 spheres takes minutes).
 """
@@ -19,6 +28,7 @@ import json
 import math
 import os
 import re
+import statistics
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -172,13 +182,78 @@ run {steps}
 """
 
 
+def run_round(args, exe, work, bed, xyz, skip):
+    """One round: CraterKit on 1 and 2 threads, then the peers, back to back. Returns the
+    step-loop seconds by code and CraterKit's JSON line."""
+    results = {}
+    hashes = set()
+    for threads in (1, 2):
+        env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_PROC_BIND="false")
+        log(f"[2/4] CraterKit, {threads} thread(s), {args.steps} steps")
+        out, _ = run([exe, "run", bed, str(args.steps)], env=env)
+        ck = json.loads(out.strip().splitlines()[-1])
+        results[f"CraterKit {threads}T"] = ck["seconds"]
+        hashes.add(ck["state_hash"])
+    if len(hashes) != 1:  # the solver promises the same bits on any number of threads
+        raise RuntimeError(f"CraterKit's final states differ between 1 and 2 threads: {hashes}")
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    peers = [("lammps", "LAMMPS", "lmp", "sphere", lammps_input, "[3/4] LAMMPS, 2 MPI ranks"),
+             ("liggghts", "LIGGGHTS", "liggghts", "granular", liggghts_input,
+              "[4/4] LIGGGHTS 3.8, 2 MPI ranks (no twisting model)")]
+    for key, name, executable, style, make_input, message in peers:
+        if key in skip:
+            continue
+        log(message)
+        write_data(os.path.join(work, f"bed.{key}.data"), ck, xyz, style)
+        with open(os.path.join(work, f"in.{key}"), "w") as f:
+            f.write(make_input(ck, args.steps))
+        out, _ = run(mpirun(2) + [executable, "-in", f"in.{key}", "-log", f"log.{key}"], env=env, cwd=work)
+        results[f"{name} 2 ranks"] = loop_time(out)
+    return results, ck
+
+
+def spread(values):
+    """'median of N rounds, lowest-highest' of a list of per-round ratios."""
+    text = f"median of {len(values)} round(s)"
+    return text if len(values) == 1 else f"{text}, {min(values):.2f}-{max(values):.2f}"
+
+
+def report(rounds, ck, steps):
+    """The per-code medians, the within-round ratios and their medians."""
+    n = ck["particles"]
+    codes = list(rounds[0])
+    median = {code: statistics.median(r[code] for r in rounds) for code in codes}
+    log(f"\n{n} particles, {steps} steps, dt = {ck['dt']:.4g} s, k_N = {ck['kn']:.4g} N/m, "
+        f"{len(rounds)} round(s); seconds: median over the rounds")
+    log(f"{'code':<20} {'seconds':>10} {'particle-steps/s':>18}")
+    for code in codes:
+        log(f"{code:<20} {median[code]:>10.3f} {n * steps / median[code]:>18.4g}")
+    log("\nper round (ratios within the round):")
+    scaling = [r["CraterKit 1T"] / r["CraterKit 2T"] for r in rounds]
+    peers = [code for code in ("LAMMPS 2 ranks", "LIGGGHTS 2 ranks") if code in codes]
+    against = {code: [r[code] / r["CraterKit 2T"] for r in rounds] for code in peers}
+    for k, r in enumerate(rounds):
+        figures = ", ".join(f"{code} {r[code]:.3f} s" for code in codes)
+        ratios = "; ".join([f"1 -> 2 threads {scaling[k]:.2f}x"] +
+                           [f"vs {code} {against[code][k]:.2f}x" for code in peers])
+        log(f"  round {k + 1}: {figures}; {ratios}")
+    log(f"\nCraterKit speed-up 1 -> 2 threads: {statistics.median(scaling):.2f}x ({spread(scaling)})")
+    for code in peers:
+        log(f"CraterKit (2 threads) vs {code}: {statistics.median(against[code]):.2f}x faster "
+            f"({spread(against[code])})")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--particles", type=int, default=100000)
     ap.add_argument("--steps", type=int, default=1000)
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
     ap.add_argument("--skip", default="", help="comma-separated codes to skip: lammps,liggghts")
+    ap.add_argument("--repeat", type=int, default=3,
+                    help="rounds of all codes back to back; ratios are medians of the rounds'")
     args = ap.parse_args()
+    if args.repeat < 1:
+        sys.exit("--repeat must be at least 1")
     exe = os.path.join(args.build, "benchmarks", "dem_bed_impact", "ck_dem_bench")
     if not os.path.isfile(exe):
         sys.exit(f"{exe} not built: run scripts/test or scripts/demo first")
@@ -194,38 +269,14 @@ def main():
         log(f"[1/4] using the cached bed {bed}")
     side, depth, xyz = read_bed(bed)
 
-    results = {}
-    for threads in (1, 2):
-        env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_PROC_BIND="false")
-        log(f"[2/4] CraterKit, {threads} thread(s), {args.steps} steps")
-        out, _ = run([exe, "run", bed, str(args.steps)], env=env)
-        ck = json.loads(out.strip().splitlines()[-1])
-        results[f"CraterKit {threads}T"] = ck["seconds"]
-    n = ck["particles"]
     skip = set(filter(None, args.skip.split(",")))
-    env = dict(os.environ, OMP_NUM_THREADS="1")
-    peers = [("lammps", "LAMMPS", "lmp", "sphere", lammps_input, "[3/4] LAMMPS, 2 MPI ranks"),
-             ("liggghts", "LIGGGHTS", "liggghts", "granular", liggghts_input,
-              "[4/4] LIGGGHTS 3.8, 2 MPI ranks (no twisting model)")]
-    for key, name, executable, style, make_input, message in peers:
-        if key in skip:
-            continue
-        log(message)
-        write_data(os.path.join(work, f"bed.{key}.data"), ck, xyz, style)
-        with open(os.path.join(work, f"in.{key}"), "w") as f:
-            f.write(make_input(ck, args.steps))
-        out, _ = run(mpirun(2) + [executable, "-in", f"in.{key}", "-log", f"log.{key}"], env=env, cwd=work)
-        results[f"{name} 2 ranks"] = loop_time(out)
-
-    log(f"\n{n} particles, {args.steps} steps, dt = {ck['dt']:.4g} s, k_N = {ck['kn']:.4g} N/m")
-    log(f"{'code':<20} {'seconds':>10} {'particle-steps/s':>18}")
-    for code, secs in results.items():
-        log(f"{code:<20} {secs:>10.3f} {n * args.steps / secs:>18.4g}")
-    ours = results["CraterKit 2T"]
-    log(f"\nCraterKit speed-up 1 -> 2 threads: {results['CraterKit 1T'] / ours:.2f}x")
-    for code in ("LAMMPS 2 ranks", "LIGGGHTS 2 ranks"):
-        if code in results:
-            log(f"CraterKit (2 threads) vs {code}: {results[code] / ours:.2f}x faster")
+    rounds = []
+    for r in range(1, args.repeat + 1):
+        log(f"round {r} of {args.repeat}")
+        results, ck = run_round(args, exe, work, bed, xyz, skip)
+        rounds.append(results)
+        log(f"      round {r}: " + ", ".join(f"{code} {secs:.3f} s" for code, secs in results.items()))
+    report(rounds, ck, args.steps)
     return 0
 
 

@@ -499,6 +499,36 @@ TEST(DemRestart, ThreadCountDoesNotChangeResults) {
   EXPECT_EQ(one.particles().position, many.particles().position);
 }
 
+// advanceSteps (and advanceTo between its progress reports and checkpoints) starts each step
+// inside the previous one: the next step's half-kick and drift run in the force gather. Same
+// arithmetic, so the same bits as single steps, through neighbour-list rebuilds, on as many
+// threads as the machine gives (> 512 particles: the parallel loops), and the state between
+// two calls is the real one (the next call continues it bit for bit).
+TEST(DemIntegrator, FusedStepsGiveTheBitsOfSingleSteps) {
+  const ParticleSet s = jostledBlock(0.5, 8, 1.0, 0.6 * kR, 20.0);
+  ASSERT_GT(s.size(), 600u);
+  const DemParams p = frictionalBox();
+  DemSolver single(s, p), fused(s, p), timed(s, p);
+  for (int j = 0; j < 800; ++j)
+    single.step();
+  fused.advanceSteps(300);
+  fused.advanceSteps(1);
+  fused.advanceSteps(499);
+  int reports = 0;
+  timed.advanceTo(800 * p.dt, [&](double) { return ++reports > 0; });
+  EXPECT_GT(reports, 200); // a report every fourth step: the fusion stops at each
+  EXPECT_GT(single.neighbourBuilds(), 2u) << "no rebuild inside the fused steps";
+  for (const DemSolver* other : {&fused, &timed}) {
+    EXPECT_EQ(other->stepCount(), 800);
+    EXPECT_EQ(other->neighbourBuilds(), single.neighbourBuilds());
+    EXPECT_EQ(other->particles().position, single.particles().position);
+    EXPECT_EQ(other->particles().velocity, single.particles().velocity);
+    EXPECT_EQ(other->particles().angularVelocity, single.particles().angularVelocity);
+    EXPECT_EQ(other->diagnostics().contacts, single.diagnostics().contacts);
+  }
+  EXPECT_GT(single.diagnostics().contacts, 50u);
+}
+
 // A neighbour-list rebuild never resets a spring: a run whose list is rebuilt at an arbitrary
 // step (removing a grain forces one) goes on bit for bit as the run without the rebuild. The
 // removed grain falls freely high above the block and touches nothing, so the others cannot
