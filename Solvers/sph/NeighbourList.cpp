@@ -206,24 +206,72 @@ struct NeighbourList::Grids {
   bool empty(int l) const {
     return levelSize[static_cast<std::size_t>(l)] == levelSize[static_cast<std::size_t>(l) + 1];
   }
-  // Calls f(begin, end) for the sorted entries of level l in the cells within R of x.
-  template <class F> void forCells(const double* x, double R, int l, F&& f) const {
+  // Where a level's occupied cells fit a box of not many more cells than entries, a dense
+  // index over that box: the first sorted entry at or after each cell (in key order), so a
+  // row's entries are found with two loads instead of a search.
+  struct Dense {
+    std::int64_t min[3] = {0, 0, 0}, n[3] = {0, 0, 0};
+    std::size_t offset = 0; // into `dense`
+    bool on = false;
+  };
+  std::vector<Dense> levelDense;
+  std::vector<std::uint32_t> dense;
+  void indexCells(int l, const std::vector<std::pair<std::int64_t, std::uint32_t>>& order);
+
+  // Calls f(begin, end) for the sorted entries of level l in the cells within R of x (a cube)
+  // that reach into the ball of radius `ball` around x: the cube's rows (runs of cells along
+  // x) that lie wholly outside the ball are left out (the callers' pairs all lie inside the
+  // ball, so they see the same entries in the same order). Trimming each row's ends to the ball
+  // as well cost more (a square root and two cell coordinates per row) than it saved.
+  template <class F> void forCells(const double* x, double R, double ball, int l, F&& f) const {
     if (empty(l))
       return;
+    const double cs = cellSize[static_cast<std::size_t>(l)];
+    // rounding: the ball a hair larger, so that no entry on its edge is left out
+    const double ball2 = ball * ball * (1.0 + 1e-12);
     std::int64_t c0[3], c1[3];
     for (int k = 0; k < 3; ++k) {
       c0[k] = coord(x[k] - R, k, l);
       c1[k] = coord(x[k] + R, k, l);
     }
+    // the distance from x[k] to cell c's slab along axis k
+    auto gap = [&](std::int64_t c, int k) {
+      const double below = lo[k] + static_cast<double>(c) * cs - x[k];
+      const double above = x[k] - (lo[k] + static_cast<double>(c + 1) * cs);
+      return std::max({below, above, 0.0});
+    };
+    const Dense& d = levelDense[static_cast<std::size_t>(l)];
+    if (d.on)
+      for (int k = 0; k < 3; ++k) {
+        c0[k] = std::max(c0[k], d.min[k]);
+        c1[k] = std::min(c1[k], d.min[k] + d.n[k] - 1);
+        if (c0[k] > c1[k]) // the cube misses the level's cells
+          return;
+      }
     const auto first =
         cellKey.begin() + static_cast<std::ptrdiff_t>(levelCells[static_cast<std::size_t>(l)]);
     const auto end =
         cellKey.begin() + static_cast<std::ptrdiff_t>(levelCells[static_cast<std::size_t>(l) + 1]);
-    for (std::int64_t cz = c0[2]; cz <= c1[2]; ++cz)
+    for (std::int64_t cz = c0[2]; cz <= c1[2]; ++cz) {
+      const double gz = gap(cz, 2), gz2 = gz * gz;
+      if (gz2 >= ball2)
+        continue;
       for (std::int64_t cy = c0[1]; cy <= c1[1]; ++cy) {
+        const double gy = gap(cy, 1);
+        if (gz2 + gy * gy >= ball2)
+          continue;
+        const std::int64_t x0 = c0[0], x1 = c1[0];
+        if (d.on) {
+          const std::int64_t row = ((cz - d.min[2]) * d.n[1] + (cy - d.min[1])) * d.n[0] - d.min[0];
+          const std::uint32_t b = dense[d.offset + static_cast<std::size_t>(row + x0)],
+                              e = dense[d.offset + static_cast<std::size_t>(row + x1 + 1)];
+          if (b != e)
+            f(b, e);
+          continue;
+        }
         // The row's cells are contiguous in key order: one search for its first.
-        auto it = std::lower_bound(first, end, key(c0[0], cy, cz));
-        const std::int64_t last = key(c1[0], cy, cz);
+        auto it = std::lower_bound(first, end, key(x0, cy, cz));
+        const std::int64_t last = key(x1, cy, cz);
         auto stop = it;
         while (stop != end && *stop <= last)
           ++stop;
@@ -231,8 +279,48 @@ struct NeighbourList::Grids {
           f(cellStart[static_cast<std::size_t>(it - cellKey.begin())],
             cellStart[static_cast<std::size_t>(stop - cellKey.begin())]);
       }
+    }
   }
 };
+
+// The dense index of level l (when its cells' box holds at most eight cells per entry, plus
+// some: a spray of ejecta keeps the sorted search). `order` holds the level's entries sorted by
+// cell key, at the level's range of the sorted arrays.
+void NeighbourList::Grids::indexCells(
+    int l, const std::vector<std::pair<std::int64_t, std::uint32_t>>& order) {
+  const std::size_t r0 = levelSize[static_cast<std::size_t>(l)],
+                    r1 = levelSize[static_cast<std::size_t>(l) + 1];
+  Dense& d = levelDense[static_cast<std::size_t>(l)];
+  auto axis = [](std::int64_t key, int k) { return (key >> (21 * k)) & kAxis; };
+  std::int64_t hi[3] = {0, 0, 0};
+  for (int k = 0; k < 3; ++k)
+    d.min[k] = kAxis;
+  for (std::size_t r = r0; r < r1; ++r)
+    for (int k = 0; k < 3; ++k) {
+      d.min[k] = std::min(d.min[k], axis(order[r].first, k));
+      hi[k] = std::max(hi[k], axis(order[r].first, k));
+    }
+  double cells = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    d.n[k] = hi[k] - d.min[k] + 1;
+    cells *= static_cast<double>(d.n[k]);
+  }
+  if (r0 == r1 || cells > 8.0 * static_cast<double>(r1 - r0) + 4096.0)
+    return;
+  d.on = true;
+  d.offset = dense.size();
+  const std::size_t total = static_cast<std::size_t>(cells);
+  dense.resize(d.offset + total + 1, 0);
+  std::uint32_t* first = dense.data() + d.offset;
+  for (std::size_t r = r0; r < r1; ++r) {
+    const std::int64_t key = order[r].first;
+    ++first[((axis(key, 2) - d.min[2]) * d.n[1] + (axis(key, 1) - d.min[1])) * d.n[0] +
+            (axis(key, 0) - d.min[0]) + 1];
+  }
+  first[0] = static_cast<std::uint32_t>(r0);
+  for (std::size_t c = 1; c <= total; ++c)
+    first[c] += first[c - 1];
+}
 
 NeighbourList::Grids::Grids(const SphState& s, const std::vector<double>& pos,
                             const std::vector<std::uint32_t>& id,
@@ -298,6 +386,9 @@ NeighbourList::Grids::Grids(const SphState& s, const std::vector<double>& pos,
     }
     levelCells[static_cast<std::size_t>(l) + 1] = cellKey.size();
   }
+  levelDense.assign(static_cast<std::size_t>(levels), Dense{});
+  for (int l = 0; l < levels; ++l)
+    indexCells(l, order);
   cellStart.push_back(static_cast<std::uint32_t>(m));
 }
 
@@ -385,7 +476,9 @@ bool NeighbourList::visit(const Grids& g, const SphState& s, std::size_t a,
   for (int l = 0; l <= la; ++l) {
     const double R = grow * std::max(ha, g.levelH[static_cast<std::size_t>(l)]) +
                      std::max(ma, g.levelMu[static_cast<std::size_t>(l)]);
-    g.forCells(xa, R, l, [&](std::uint32_t begin, std::uint32_t end) {
+    // Listed and near-missed pairs lie within R plus the larger margin.
+    const double ball = R + std::max(ma, g.levelMu[static_cast<std::size_t>(l)]);
+    g.forCells(xa, R, ball, l, [&](std::uint32_t begin, std::uint32_t end) {
       // The candidates' tests in one vector pass, then the list advances past those in
       // range (branch-free: every candidate is written).
       const std::uint32_t count = end - begin;
@@ -445,7 +538,8 @@ double NeighbourList::clearanceOf(const Grids& g, const SphState& s, const SphPa
       continue;
     }
     spare = std::min(spare, R - range);
-    g.forCells(xa, R, l, [&](std::uint32_t begin, std::uint32_t end) {
+    // Beyond R nobody is nearer than R - range: the ball of radius R holds all that counts.
+    g.forCells(xa, R, R, l, [&](std::uint32_t begin, std::uint32_t end) {
       for (std::uint32_t r = begin; r < end; ++r) {
         const std::uint32_t e = g.sid[r];
         if (e / 32 == a && e % 32 == kNoShift)
@@ -469,23 +563,21 @@ double NeighbourList::clearanceOf(const Grids& g, const SphState& s, const SphPa
 void NeighbourList::listAll(const Grids& g, const SphState& s, const SphParams& par, double reach,
                             bool margins) {
   const std::size_t n = s.size();
-  // per thread: which candidates are listed
-  std::vector<std::vector<std::uint8_t>> keepOf(static_cast<std::size_t>(omp_get_max_threads()));
   const double far = 4.0 * reach;
   ++builds_;
   start_.assign(n + 1, 0);
   clearance_.assign(n, 0.0);
   const int threads = n >= 1024 ? omp_get_max_threads() : 1;
-  std::vector<std::vector<std::uint32_t>> buffers(static_cast<std::size_t>(threads));
-  std::vector<std::vector<Handed>> handedBy(static_cast<std::size_t>(threads));
+  if (work_.size() < static_cast<std::size_t>(threads))
+    work_.resize(static_cast<std::size_t>(threads));
 #pragma omp parallel num_threads(threads)
   {
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()),
                       nt = static_cast<std::size_t>(omp_get_num_threads());
     const std::size_t a0 = n * t / nt, a1 = n * (t + 1) / nt;
-    std::vector<std::uint32_t>& out = buffers[t];
-    std::vector<Handed>& handed = handedBy[t];
-    std::vector<std::uint8_t>& keep = keepOf[static_cast<std::size_t>(omp_get_thread_num())];
+    std::vector<std::uint32_t>& out = work_[t].out;
+    std::vector<Handed>& handed = work_[t].handed;
+    std::vector<std::uint8_t>& keep = work_[t].keep;
     out.clear();
     handed.clear();
     for (std::size_t a = a0; a < a1; ++a) {
@@ -499,16 +591,14 @@ void NeighbourList::listAll(const Grids& g, const SphState& s, const SphParams& 
     }
   }
   std::size_t total = 0;
-  for (const auto& b : buffers)
-    total += b.size();
-  for (const auto& h : handedBy)
-    total += h.size();
+  for (std::size_t t = 0; t < static_cast<std::size_t>(threads); ++t)
+    total += work_[t].out.size() + work_[t].handed.size();
   if (total > 0xF0000000u)
     throw std::runtime_error(
         "SPH: too many neighbour pairs (the smoothing lengths have grown too large)");
   std::vector<std::uint32_t> own(start_.begin() + 1, start_.end());
-  for (const auto& h : handedBy)
-    for (const Handed& p : h)
+  for (std::size_t t = 0; t < static_cast<std::size_t>(threads); ++t)
+    for (const Handed& p : work_[t].handed)
       ++start_[p.to + 1];
   for (std::size_t a = 0; a < n; ++a)
     start_[a + 1] += start_[a];
@@ -519,15 +609,15 @@ void NeighbourList::listAll(const Grids& g, const SphState& s, const SphParams& 
   for (std::size_t a = 0; a < n; ++a) {
     if (own[a] == 0)
       continue;
-    while (k == buffers[bi].size())
+    while (k == work_[bi].out.size())
       ++bi, k = 0;
-    std::copy(buffers[bi].begin() + static_cast<std::ptrdiff_t>(k),
-              buffers[bi].begin() + static_cast<std::ptrdiff_t>(k + own[a]),
+    std::copy(work_[bi].out.begin() + static_cast<std::ptrdiff_t>(k),
+              work_[bi].out.begin() + static_cast<std::ptrdiff_t>(k + own[a]),
               entry_.begin() + static_cast<std::ptrdiff_t>(start_[a]));
     k += own[a];
   }
-  for (const auto& h : handedBy)
-    for (const Handed& p : h)
+  for (std::size_t t = 0; t < static_cast<std::size_t>(threads); ++t)
+    for (const Handed& p : work_[t].handed)
       entry_[start_[p.to] + own[p.to]++] = p.entry;
 }
 
