@@ -19,6 +19,11 @@
 // distance has the same bits from either side); its spring energy is booked as dissipated (so
 // that kinetic + repulsive + bond + dissipated energy is what the integrator conserves).
 //
+// Where the AVX-512 passes run, the second half kick of a step is left to the next step's
+// kick-drift (which streams v, f and m anyway) with the operation the force pass would have done,
+// so the force pass writes f only; every public call (step, advance) ends with it done. The
+// rebuild tests its candidates on a copy of the positions in the cell list's order.
+//
 // OpenMP without atomics (chunks handed out dynamically, which changes no result): each particle
 // sums its own list entries in index order of the partners, and energies are summed over fixed-size
 // chunks in chunk order. Results are therefore bit-identical for any thread count; and because
@@ -87,6 +92,11 @@ private:
   void buildPairs();
   void computeForces(bool kick);
   void bookBreaks();
+  // One step; where the AVX-512 passes run, the second half kick is left pending (kickPending_)
+  // and done by the next step's kick-drift, so that the force pass does not stream v and m.
+  void stepDeferred();
+  double kickDrift();
+  void settle(); // the pending half kick, if any: every public call ends with none pending
 
   BondedSystem sys_;
   BondedSolverParams params_;
@@ -96,6 +106,7 @@ private:
   std::size_t builds_ = 0;
   double dissipated_ = 0.0;
   std::vector<double> force_, listOrigin_;
+  bool kickPending_ = false;
   std::vector<std::uint8_t> bondBroken_; // 0 intact, 1 broken
   std::vector<std::size_t> bondStart_;   // each particle's bonds: bondsOf_[bondStart_[i]...]
   std::vector<std::uint32_t> bondsOf_;
@@ -106,9 +117,11 @@ private:
   std::vector<std::uint32_t> partner_;     // the other particle (the particle itself: padding)
   std::vector<double> rest_;               // rest length of the pair's intact bond, or +∞
   std::vector<std::uint32_t> blockBreaks_; // bonds broken in the last pass, per block
-  // The rebuild's buffers: the cell list, each chunk's staged (partner, rest) lists and each
-  // particle's list length.
+  // The rebuild's buffers: the cell list with a copy of the positions in its order, each chunk's
+  // staged (partner, rest) lists and each particle's list length.
   CellList cells_;
+  std::vector<double> cellX_, cellY_, cellZ_; // the positions in the cell list's order
+  std::vector<std::uint32_t> cellId_;         // and the particles' indices
   std::vector<std::vector<std::pair<std::uint32_t, double>>> staged_;
   std::vector<std::uint32_t> listed_;
 };
