@@ -63,13 +63,12 @@ long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1);
 // half kick v += h f and the drift x += Δt v, each product and sum rounded on its own as in the
 // solver's generic kick-drift. The bits are those of the force pass's kick followed by the
 // generic kick-drift, and the force pass no longer streams v and m. Returns the largest squared
-// distance from `origin` (the positions at the last list build).
+// speed after the kicks.
 struct DriftPass {
   double* x;
   double* v;
   const double* f;
   const double* m;
-  const double* origin;
   double dt, halfStep;
   bool pending;
 };

@@ -216,11 +216,7 @@ void BondedSolver::buildPairs() {
       }
   }
   blockBreaks_.assign(blocks, 0);
-  listOrigin_.resize(3 * n);
-  const long coords = static_cast<long>(3 * n);
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < coords; ++k)
-    listOrigin_[k] = x[k];
+  travel_ = 0.0;
   ++builds_;
 }
 
@@ -294,7 +290,7 @@ void BondedSolver::bookBreaks() {
   }
 }
 
-// Velocity Verlet: half kick and drift (with the largest move since the list was built), the
+// Velocity Verlet: half kick and drift (with the largest speed), the
 // lists rebuilt if a particle may have crossed half the skin, then the forces and, in the same
 // pass or deferred to the next kick-drift, the second half kick.
 void BondedSolver::step() {
@@ -303,26 +299,26 @@ void BondedSolver::step() {
 }
 
 void BondedSolver::stepDeferred() {
-  const double worst = kickDrift();
-  const double half = 0.5 * params_.skin * sys_.law.sigma;
-  if (worst > half * half)
+  // No particle has moved farther since the build than the sum over the steps of Δt times the
+  // largest speed: the lists hold until that passes half the skin (no positions at the build to
+  // stream every step).
+  travel_ += dt_ * std::sqrt(kickDrift());
+  if (travel_ > 0.5 * params_.skin * sys_.law.sigma)
     buildPairs();
   computeForces(true);
   ++step_;
 }
 
-// The (pending and) first half kick and the drift; returns the largest squared move since the
-// lists were built.
+// The (pending and) first half kick and the drift; returns the largest squared speed.
 double BondedSolver::kickDrift() {
   const long n = static_cast<long>(sys_.size());
   double* x = sys_.positions.data();
   double* v = sys_.velocities.data();
   const double* m = sys_.masses.data();
-  const double* o = listOrigin_.data();
   const double dt = dt_;
   double worst = 0.0;
   if (kickPending_) {
-    const bondedpass::DriftPass p{x, v, force_.data(), m, o, dt, 0.5 * dt, true};
+    const bondedpass::DriftPass p{x, v, force_.data(), m, dt, 0.5 * dt, true};
     constexpr long kChunk = 2048;
 #pragma omp parallel for schedule(dynamic) reduction(max : worst)
     for (long c = 0; c < (n + kChunk - 1) / kChunk; ++c)
@@ -335,14 +331,13 @@ double BondedSolver::kickDrift() {
 #pragma omp parallel for schedule(dynamic, 2048) reduction(max : worst)
   for (long i = 0; i < n; ++i) {
     const double h = 0.5 * dt / m[i];
-    double d2 = 0.0;
+    double v2 = 0.0;
     for (int k = 0; k < 3; ++k) {
       v[3 * i + k] += h * force_[3 * i + k];
       x[3 * i + k] += dt * v[3 * i + k];
-      const double d = x[3 * i + k] - o[3 * i + k];
-      d2 += d * d;
+      v2 += v[3 * i + k] * v[3 * i + k];
     }
-    worst = std::max(worst, d2);
+    worst = std::max(worst, v2);
   }
   return worst;
 }
@@ -355,7 +350,6 @@ void BondedSolver::settle() {
                                 sys_.velocities.data(),
                                 force_.data(),
                                 sys_.masses.data(),
-                                listOrigin_.data(),
                                 dt_,
                                 0.5 * dt_,
                                 true};
