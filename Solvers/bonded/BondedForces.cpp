@@ -60,5 +60,16 @@ CK_SIMD_CLONES long blockForces(const BlockPass& p, std::size_t b0, std::size_t 
   return total;
 }
 
+std::size_t nearCandidates(const NearScan& s, std::size_t begin, std::size_t end,
+                           const double xi[3], std::uint32_t self, std::uint32_t* out) {
+  std::size_t count = 0;
+  for (std::size_t k = begin; k < end; ++k) {
+    const double dx = s.x[k] - xi[0], dy = s.y[k] - xi[1], dz = s.z[k] - xi[2];
+    out[count] = s.id[k];
+    count += (dx * dx + dy * dy + dz * dz < s.reach2) & (s.id[k] != self);
+  }
+  return count;
+}
+
 } // namespace bondedpass
 } // namespace craterkit

@@ -57,5 +57,38 @@ bool avx512Available();
 // avx512Available().
 long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1);
 
+// The kick-drift of velocity Verlet over particles [i0, i1) where the force pass ran without its
+// half kick (where avx512Available()): first that deferred second half kick of the previous step
+// (if `pending`), v = fma(h, f, v), the operation blockForcesAvx512 does; then this step's first
+// half kick v += h f and the drift x += Δt v, each product and sum rounded on its own as in the
+// solver's generic kick-drift. The bits are those of the force pass's kick followed by the
+// generic kick-drift, and the force pass no longer streams v and m. Returns the largest squared
+// speed after the kicks.
+struct DriftPass {
+  double* x;
+  double* v;
+  const double* f;
+  const double* m;
+  double dt, halfStep;
+  bool pending;
+};
+double driftAvx512(const DriftPass& p, std::size_t i0, std::size_t i1);
+// The rebuild's candidate test over a copy of the positions in the cell list's order (x, y, z
+// apart, with the particles' indices): which of entries [begin, end) lie closer than the reach to
+// `xi`, other than the particle `self`. Their indices are written to `out` (which must have room
+// for end - begin + kLanes entries); returns how many. The generic version runs anywhere, the
+// AVX-512 one eight candidates at a time where avx512Available(); both give the same list.
+struct NearScan {
+  const double *x, *y, *z;
+  const std::uint32_t* id;
+  double reach2;
+};
+std::size_t nearCandidates(const NearScan& s, std::size_t begin, std::size_t end,
+                           const double xi[3], std::uint32_t self, std::uint32_t* out);
+std::size_t nearCandidatesAvx512(const NearScan& s, std::size_t begin, std::size_t end,
+                                 const double xi[3], std::uint32_t self, std::uint32_t* out);
+// The deferred second half kick alone, v = fma(h, f, v), over particles [i0, i1).
+void halfKickAvx512(const DriftPass& p, std::size_t i0, std::size_t i1);
+
 } // namespace bondedpass
 } // namespace craterkit

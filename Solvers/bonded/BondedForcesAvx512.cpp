@@ -24,6 +24,7 @@ bool avx512Available() {
 // trip this warning; nothing here reads an uninitialised value.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 
 namespace {
 
@@ -113,6 +114,66 @@ long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1) {
   return total;
 }
 
+namespace {
+
+// One particle of the kick-drift; returns its squared speed.
+inline double driftOne(const DriftPass& p, std::size_t i) {
+  const double h = p.halfStep / p.m[i];
+  double v2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t c = 3 * i + k;
+    double v = p.v[c];
+    if (p.pending)
+      v = __builtin_fma(h, p.f[c], v);
+    v += h * p.f[c]; // not fused: this file is compiled with -ffp-contract=off
+    p.v[c] = v;
+    p.x[c] += p.dt * v;
+    v2 += v * v;
+  }
+  return v2;
+}
+
+} // namespace
+
+double driftAvx512(const DriftPass& p, std::size_t i0, std::size_t i1) {
+  double worst = 0.0;
+  for (std::size_t i = i0; i < i1; ++i)
+    worst = std::max(worst, driftOne(p, i));
+  return worst;
+}
+
+std::size_t nearCandidatesAvx512(const NearScan& s, std::size_t begin, std::size_t end,
+                                 const double xi[3], std::uint32_t self, std::uint32_t* out) {
+  const __m512d x = _mm512_set1_pd(xi[0]), y = _mm512_set1_pd(xi[1]), z = _mm512_set1_pd(xi[2]);
+  const __m512d reach2 = _mm512_set1_pd(s.reach2);
+  const __m256i me = _mm256_set1_epi32(static_cast<int>(self));
+  std::size_t count = 0;
+  for (std::size_t k = begin; k < end; k += kLanes) {
+    const __mmask8 in = end - k >= kLanes ? 0xFF : static_cast<__mmask8>((1u << (end - k)) - 1);
+    const __m512d dx = _mm512_sub_pd(_mm512_maskz_loadu_pd(in, s.x + k), x);
+    const __m512d dy = _mm512_sub_pd(_mm512_maskz_loadu_pd(in, s.y + k), y);
+    const __m512d dz = _mm512_sub_pd(_mm512_maskz_loadu_pd(in, s.z + k), z);
+    const __m512d r2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
+                                     _mm512_mul_pd(dz, dz));
+    const __m256i ids = _mm256_maskz_loadu_epi32(in, s.id + k);
+    const __mmask8 near =
+        in & _mm512_cmp_pd_mask(r2, reach2, _CMP_LT_OQ) & _mm256_cmpneq_epi32_mask(ids, me);
+    // Compressed in a register and stored whole (the memory form is slow on some processors).
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + count),
+                        _mm256_maskz_compress_epi32(near, ids));
+    count += static_cast<std::size_t>(__builtin_popcount(near));
+  }
+  return count;
+}
+
+void halfKickAvx512(const DriftPass& p, std::size_t i0, std::size_t i1) {
+  for (std::size_t i = i0; i < i1; ++i) {
+    const double h = p.halfStep / p.m[i];
+    for (int k = 0; k < 3; ++k)
+      p.v[3 * i + k] = __builtin_fma(h, p.f[3 * i + k], p.v[3 * i + k]);
+  }
+}
+
 #pragma GCC diagnostic pop
 #pragma GCC pop_options
 
@@ -120,6 +181,36 @@ long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1) {
 
 bool avx512Available() { return false; }
 long blockForcesAvx512(const BlockPass&, std::size_t, std::size_t) { return 0; }
+double driftAvx512(const DriftPass&, std::size_t, std::size_t) { return 0.0; }
+std::size_t nearCandidatesAvx512(const NearScan& s, std::size_t begin, std::size_t end,
+                                 const double xi[3], std::uint32_t self, std::uint32_t* out) {
+  const __m512d x = _mm512_set1_pd(xi[0]), y = _mm512_set1_pd(xi[1]), z = _mm512_set1_pd(xi[2]);
+  const __m512d reach2 = _mm512_set1_pd(s.reach2);
+  const __m256i me = _mm256_set1_epi32(static_cast<int>(self));
+  std::size_t count = 0;
+  for (std::size_t k = begin; k < end; k += kLanes) {
+    const __mmask8 in = end - k >= kLanes ? 0xFF : static_cast<__mmask8>((1u << (end - k)) - 1);
+    const __m512d dx = _mm512_sub_pd(_mm512_maskz_loadu_pd(in, s.x + k), x);
+    const __m512d dy = _mm512_sub_pd(_mm512_maskz_loadu_pd(in, s.y + k), y);
+    const __m512d dz = _mm512_sub_pd(_mm512_maskz_loadu_pd(in, s.z + k), z);
+    const __m512d r2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
+                                     _mm512_mul_pd(dz, dz));
+    const __m256i ids = _mm256_maskz_loadu_epi32(in, s.id + k);
+    const __mmask8 near =
+        in & _mm512_cmp_pd_mask(r2, reach2, _CMP_LT_OQ) & _mm256_cmpneq_epi32_mask(ids, me);
+    // Compressed in a register and stored whole (the memory form is slow on some processors).
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + count),
+                        _mm256_maskz_compress_epi32(near, ids));
+    count += static_cast<std::size_t>(__builtin_popcount(near));
+  }
+  return count;
+}
+
+void halfKickAvx512(const DriftPass&, std::size_t, std::size_t) {}
+std::size_t nearCandidatesAvx512(const NearScan&, std::size_t, std::size_t, const double[3],
+                                 std::uint32_t, std::uint32_t*) {
+  return 0;
+}
 
 #endif
 

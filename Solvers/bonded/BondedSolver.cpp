@@ -122,15 +122,34 @@ void BondedSolver::buildPairs() {
   const double reach = sys_.law.rEq() + params_.skin * sys_.law.sigma, reach2 = reach * reach;
   CellList& cells = cells_;
   cells.build(x, n, reach);
+  // The candidates are tested on a copy of the positions in cell order, x, y and z apart: each
+  // row of cells is then a contiguous stretch, tested eight at a time where the AVX-512 passes
+  // run (the list is the same either way).
+  const std::vector<std::size_t>& order = cells.sorted();
+  cellX_.resize(n), cellY_.resize(n), cellZ_.resize(n), cellId_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (long s = 0; s < static_cast<long>(n); ++s) {
+    const std::size_t j = order[static_cast<std::size_t>(s)];
+    cellX_[s] = x[3 * j], cellY_[s] = x[3 * j + 1], cellZ_[s] = x[3 * j + 2];
+    cellId_[s] = static_cast<std::uint32_t>(j);
+  }
+  const bondedpass::NearScan scan{cellX_.data(), cellY_.data(), cellZ_.data(), cellId_.data(),
+                                  reach2};
+  static const bool avx512 = bondedpass::avx512Available();
+  const auto nearCandidates =
+      avx512 ? bondedpass::nearCandidatesAvx512 : bondedpass::nearCandidates;
   using Entry = std::pair<std::uint32_t, double>;
-  auto collect = [&](std::size_t i, std::vector<Entry>& out) {
-    out.clear();
-    cells.forEachCandidate(x + 3 * i, reach, [&](std::size_t j) {
-      const double dx = x[3 * j] - x[3 * i], dy = x[3 * j + 1] - x[3 * i + 1],
-                   dz = x[3 * j + 2] - x[3 * i + 2];
-      if (j != i && dx * dx + dy * dy + dz * dz < reach2)
-        out.emplace_back(static_cast<std::uint32_t>(j), kNoBond);
+  auto collect = [&](std::size_t i, std::vector<Entry>& out, std::vector<std::uint32_t>& near) {
+    std::size_t found = 0;
+    cells.forEachCandidateRange(x + 3 * i, reach, [&](std::size_t begin, std::size_t end) {
+      if (near.size() < found + (end - begin) + kLanes)
+        near.resize(2 * (found + (end - begin) + kLanes));
+      found += nearCandidates(scan, begin, end, x + 3 * i, static_cast<std::uint32_t>(i),
+                              near.data() + found);
     });
+    out.clear();
+    for (std::size_t k = 0; k < found; ++k)
+      out.emplace_back(near[k], kNoBond);
     for (std::size_t s = bondStart_[i]; s < bondStart_[i + 1]; ++s) {
       const BondedBond& b = sys_.bonds[bondsOf_[s]];
       if (!bondBroken_[bondsOf_[s]])
@@ -158,6 +177,7 @@ void BondedSolver::buildPairs() {
 #pragma omp parallel
   {
     std::vector<Entry> list, chunk;
+    std::vector<std::uint32_t> near;
 #pragma omp for schedule(dynamic)
     for (long c = 0; c < nc; ++c) {
       // Filled in a private vector (given the chunk's buffer): the threads' vector headers in
@@ -167,7 +187,7 @@ void BondedSolver::buildPairs() {
       for (std::size_t b = b0; b < std::min(blocks, b0 + kChunkBlocks); ++b) {
         std::size_t depth = 0;
         for (std::size_t i = b * kLanes; i < std::min(n, (b + 1) * kLanes); ++i) {
-          collect(i, list);
+          collect(i, list, near);
           count[i] = static_cast<std::uint32_t>(list.size());
           chunk.insert(chunk.end(), list.begin(), list.end());
           depth = std::max(depth, list.size());
@@ -196,7 +216,7 @@ void BondedSolver::buildPairs() {
       }
   }
   blockBreaks_.assign(blocks, 0);
-  listOrigin_ = sys_.positions;
+  travel_ = 0.0;
   ++builds_;
 }
 
@@ -212,7 +232,10 @@ void BondedSolver::computeForces(bool kick) {
   pass.rest = rest_.data();
   pass.breaks = blockBreaks_.data();
   pass.force = force_.data();
-  pass.v = kick ? sys_.velocities.data() : nullptr;
+  static const bool avx512 = bondedpass::avx512Available();
+  // The AVX-512 kick-drift does this half kick at the next step with the same operation.
+  pass.v = kick && !avx512 ? sys_.velocities.data() : nullptr;
+  kickPending_ = kick && avx512;
   pass.m = sys_.masses.data();
   pass.halfStep = 0.5 * dt_;
   pass.terms = {law.sigma * law.sigma, law.epsilon, law.kappa, law.rEq() * law.rEq()};
@@ -220,7 +243,6 @@ void BondedSolver::computeForces(bool kick) {
   constexpr std::size_t kChunk = 64; // blocks per call
   const long chunks = static_cast<long>((blocks + kChunk - 1) / kChunk);
   long newlyBroken = 0;
-  static const bool avx512 = bondedpass::avx512Available();
   const auto forces = avx512 ? bondedpass::blockForcesAvx512 : bondedpass::blockForces;
   // Dynamic: a thread that loses its core for a while leaves its chunks to the others; which
   // thread computes a particle does not change its bits.
@@ -268,43 +290,86 @@ void BondedSolver::bookBreaks() {
   }
 }
 
-// Velocity Verlet: half kick and drift (with the largest move since the list was built), the
+// Velocity Verlet: half kick and drift (with the largest speed), the
 // lists rebuilt if a particle may have crossed half the skin, then the forces and, in the same
-// pass, the second half kick.
+// pass or deferred to the next kick-drift, the second half kick.
 void BondedSolver::step() {
+  stepDeferred();
+  settle();
+}
+
+void BondedSolver::stepDeferred() {
+  // No particle has moved farther since the build than the sum over the steps of Δt times the
+  // largest speed: the lists hold until that passes half the skin (no positions at the build to
+  // stream every step).
+  travel_ += dt_ * std::sqrt(kickDrift());
+  if (travel_ > 0.5 * params_.skin * sys_.law.sigma)
+    buildPairs();
+  computeForces(true);
+  ++step_;
+}
+
+// The (pending and) first half kick and the drift; returns the largest squared speed.
+double BondedSolver::kickDrift() {
   const long n = static_cast<long>(sys_.size());
   double* x = sys_.positions.data();
   double* v = sys_.velocities.data();
   const double* m = sys_.masses.data();
-  const double* o = listOrigin_.data();
   const double dt = dt_;
   double worst = 0.0;
+  if (kickPending_) {
+    const bondedpass::DriftPass p{x, v, force_.data(), m, dt, 0.5 * dt, true};
+    constexpr long kChunk = 2048;
+#pragma omp parallel for schedule(dynamic) reduction(max : worst)
+    for (long c = 0; c < (n + kChunk - 1) / kChunk; ++c)
+      worst = std::max(
+          worst, bondedpass::driftAvx512(p, static_cast<std::size_t>(c * kChunk),
+                                         static_cast<std::size_t>(std::min(n, (c + 1) * kChunk))));
+    kickPending_ = false;
+    return worst;
+  }
 #pragma omp parallel for schedule(dynamic, 2048) reduction(max : worst)
   for (long i = 0; i < n; ++i) {
     const double h = 0.5 * dt / m[i];
-    double d2 = 0.0;
+    double v2 = 0.0;
     for (int k = 0; k < 3; ++k) {
       v[3 * i + k] += h * force_[3 * i + k];
       x[3 * i + k] += dt * v[3 * i + k];
-      const double d = x[3 * i + k] - o[3 * i + k];
-      d2 += d * d;
+      v2 += v[3 * i + k] * v[3 * i + k];
     }
-    worst = std::max(worst, d2);
+    worst = std::max(worst, v2);
   }
-  const double half = 0.5 * params_.skin * sys_.law.sigma;
-  if (worst > half * half)
-    buildPairs();
-  computeForces(true);
-  ++step_;
+  return worst;
+}
+
+void BondedSolver::settle() {
+  if (!kickPending_)
+    return;
+  const long n = static_cast<long>(sys_.size());
+  const bondedpass::DriftPass p{sys_.positions.data(),
+                                sys_.velocities.data(),
+                                force_.data(),
+                                sys_.masses.data(),
+                                dt_,
+                                0.5 * dt_,
+                                true};
+  constexpr long kChunk = 2048;
+#pragma omp parallel for schedule(dynamic)
+  for (long c = 0; c < (n + kChunk - 1) / kChunk; ++c)
+    bondedpass::halfKickAvx512(p, static_cast<std::size_t>(c * kChunk),
+                               static_cast<std::size_t>(std::min(n, (c + 1) * kChunk)));
+  kickPending_ = false;
 }
 
 void BondedSolver::advance(std::size_t steps, const ProgressCallback& progress) {
   reportProgress(progress, 0.0);
   const std::size_t every = std::max<std::size_t>(1, steps / 100);
   for (std::size_t s = 1; s <= steps; ++s) {
-    step();
-    if (s % every == 0 || s == steps)
+    stepDeferred();
+    if (s == steps || (progress && s % every == 0)) {
+      settle(); // the state is whole at every report (an abort keeps it) and at the end
       reportProgress(progress, static_cast<double>(s) / static_cast<double>(steps));
+    }
   }
 }
 

@@ -7,17 +7,23 @@
 //
 // Every pair of particles is handled in one fused pass per particle over its pair list: the
 // particles it may touch before the next rebuild (a full Verlet list: all particles within
-// r_eq + skin, built with the common CellList, rebuilt when a particle has moved more than half
-// the skin) together with its bonded partners however far, each entry carrying the rest length
-// of its intact bond (or none). One entry gives the pair's repulsion (closer than r_eq) and
-// spring (stretched bond) at once (ws2017::pairForceOverR), and each pair is computed twice,
-// once from each side, with exactly opposite results. The lists are stored in blocks of eight
-// particles, entry k of the eight particles side by side (padded with the particle itself, which
-// contributes nothing), so that the pass runs eight particles per SIMD instruction with every
-// particle's own sum in its own lane, in the order of its list. Each step, after the drift, a
-// bond longer than r_cut is broken for good by both its particles' passes alike (the squared
-// distance has the same bits from either side); its spring energy is booked as dissipated (so
-// that kinetic + repulsive + bond + dissipated energy is what the integrator conserves).
+// r_eq + skin, built with the common CellList, rebuilt when a particle may have moved more than
+// half the skin: Δt times the largest speed, summed over the steps since the build) together with
+// its bonded partners however far, each entry carrying the rest length of its intact bond (or
+// none). One entry gives the pair's repulsion (closer than r_eq) and spring (stretched bond) at
+// once (ws2017::pairForceOverR), and each pair is computed twice, once from each side, with exactly
+// opposite results. The lists are stored in blocks of eight particles, entry k of the eight
+// particles side by side (padded with the particle itself, which contributes nothing), so that the
+// pass runs eight particles per SIMD instruction with every particle's own sum in its own lane, in
+// the order of its list. Each step, after the drift, a bond longer than r_cut is broken for good by
+// both its particles' passes alike (the squared distance has the same bits from either side); its
+// spring energy is booked as dissipated (so that kinetic + repulsive + bond + dissipated energy is
+// what the integrator conserves).
+//
+// Where the AVX-512 passes run, the second half kick of a step is left to the next step's
+// kick-drift (which streams v, f and m anyway) with the operation the force pass would have done,
+// so the force pass writes f only; every public call (step, advance) ends with it done. The
+// rebuild tests its candidates on a copy of the positions in the cell list's order.
 //
 // OpenMP without atomics (chunks handed out dynamically, which changes no result): each particle
 // sums its own list entries in index order of the partners, and energies are summed over fixed-size
@@ -87,6 +93,11 @@ private:
   void buildPairs();
   void computeForces(bool kick);
   void bookBreaks();
+  // One step; where the AVX-512 passes run, the second half kick is left pending (kickPending_)
+  // and done by the next step's kick-drift, so that the force pass does not stream v and m.
+  void stepDeferred();
+  double kickDrift();
+  void settle(); // the pending half kick, if any: every public call ends with none pending
 
   BondedSystem sys_;
   BondedSolverParams params_;
@@ -95,7 +106,9 @@ private:
   std::size_t broken_ = 0;
   std::size_t builds_ = 0;
   double dissipated_ = 0.0;
-  std::vector<double> force_, listOrigin_;
+  std::vector<double> force_;
+  double travel_ = 0.0; // Δt times the largest speed, summed over the steps since the build
+  bool kickPending_ = false;
   std::vector<std::uint8_t> bondBroken_; // 0 intact, 1 broken
   std::vector<std::size_t> bondStart_;   // each particle's bonds: bondsOf_[bondStart_[i]...]
   std::vector<std::uint32_t> bondsOf_;
@@ -106,9 +119,11 @@ private:
   std::vector<std::uint32_t> partner_;     // the other particle (the particle itself: padding)
   std::vector<double> rest_;               // rest length of the pair's intact bond, or +∞
   std::vector<std::uint32_t> blockBreaks_; // bonds broken in the last pass, per block
-  // The rebuild's buffers: the cell list, each chunk's staged (partner, rest) lists and each
-  // particle's list length.
+  // The rebuild's buffers: the cell list with a copy of the positions in its order, each chunk's
+  // staged (partner, rest) lists and each particle's list length.
   CellList cells_;
+  std::vector<double> cellX_, cellY_, cellZ_; // the positions in the cell list's order
+  std::vector<std::uint32_t> cellId_;         // and the particles' indices
   std::vector<std::vector<std::pair<std::uint32_t, double>>> staged_;
   std::vector<std::uint32_t> listed_;
 };

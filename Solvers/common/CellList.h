@@ -24,6 +24,16 @@ public:
   // Calls visit(j) for every point j in the cells overlapping [x - reach, x + reach].
   template <class Visit>
   void forEachCandidate(const double x[3], double reach, Visit&& visit) const {
+    forEachCandidateRange(x, reach, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t s = begin; s < end; ++s)
+        visit(sorted_[s]);
+    });
+  }
+
+  // The same points as ranges [begin, end) of sorted(), one per row of cells along x: for callers
+  // that scan a copy of their coordinates laid out in cell order.
+  template <class Visit>
+  void forEachCandidateRange(const double x[3], double reach, Visit&& visit) const {
     if (count_ == 0)
       return;
     std::array<long, 3> lo{}, hi{};
@@ -36,13 +46,12 @@ public:
     for (long cz = lo[2]; cz <= hi[2]; ++cz)
       for (long cy = lo[1]; cy <= hi[1]; ++cy) {
         const std::size_t row = (static_cast<std::size_t>(cz) * dims_[1] + cy) * dims_[0];
-        const std::size_t begin = cellStart_[row + lo[0]];
-        const std::size_t end = cellStart_[row + hi[0] + 1];
-        for (std::size_t s = begin; s < end; ++s)
-          visit(sorted_[s]);
+        visit(cellStart_[row + lo[0]], cellStart_[row + hi[0] + 1]);
       }
   }
 
+  // The points' indices in cell order.
+  const std::vector<std::size_t>& sorted() const { return sorted_; }
   double cellSize() const { return cellSize_; }
 
 private:

@@ -33,6 +33,27 @@ TEST(CellList, CandidatesContainAllNeighboursWithinReach) {
   }
 }
 
+// The ranges of sorted() are the points forEachCandidate visits, in the same order.
+TEST(CellList, CandidateRangesHoldTheCandidates) {
+  Random rng(12);
+  const std::size_t n = 2000;
+  std::vector<double> x(3 * n);
+  for (auto& v : x)
+    v = rng.uniform(-3.0, 3.0);
+  CellList cells;
+  cells.build(x.data(), n, 0.7);
+  for (std::size_t i = 0; i < n; i += 5) {
+    std::vector<std::size_t> visited, ranged;
+    cells.forEachCandidate(&x[3 * i], 0.7, [&](std::size_t j) { visited.push_back(j); });
+    cells.forEachCandidateRange(&x[3 * i], 0.7, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t s = begin; s < end; ++s)
+        ranged.push_back(cells.sorted()[s]);
+    });
+    ASSERT_EQ(ranged, visited) << "point " << i;
+    ASSERT_FALSE(visited.empty()); // the point itself at least
+  }
+}
+
 TEST(CellList, RejectsNonFinitePoints) {
   std::vector<double> x = {0, 0, 0, std::nan(""), 0, 0};
   CellList cells;
