@@ -182,30 +182,6 @@ void halfKickAvx512(const DriftPass& p, std::size_t i0, std::size_t i1) {
 bool avx512Available() { return false; }
 long blockForcesAvx512(const BlockPass&, std::size_t, std::size_t) { return 0; }
 double driftAvx512(const DriftPass&, std::size_t, std::size_t) { return 0.0; }
-std::size_t nearCandidatesAvx512(const NearScan& s, std::size_t begin, std::size_t end,
-                                 const double xi[3], std::uint32_t self, std::uint32_t* out) {
-  const __m512d x = _mm512_set1_pd(xi[0]), y = _mm512_set1_pd(xi[1]), z = _mm512_set1_pd(xi[2]);
-  const __m512d reach2 = _mm512_set1_pd(s.reach2);
-  const __m256i me = _mm256_set1_epi32(static_cast<int>(self));
-  std::size_t count = 0;
-  for (std::size_t k = begin; k < end; k += kLanes) {
-    const __mmask8 in = end - k >= kLanes ? 0xFF : static_cast<__mmask8>((1u << (end - k)) - 1);
-    const __m512d dx = _mm512_sub_pd(_mm512_maskz_loadu_pd(in, s.x + k), x);
-    const __m512d dy = _mm512_sub_pd(_mm512_maskz_loadu_pd(in, s.y + k), y);
-    const __m512d dz = _mm512_sub_pd(_mm512_maskz_loadu_pd(in, s.z + k), z);
-    const __m512d r2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
-                                     _mm512_mul_pd(dz, dz));
-    const __m256i ids = _mm256_maskz_loadu_epi32(in, s.id + k);
-    const __mmask8 near =
-        in & _mm512_cmp_pd_mask(r2, reach2, _CMP_LT_OQ) & _mm256_cmpneq_epi32_mask(ids, me);
-    // Compressed in a register and stored whole (the memory form is slow on some processors).
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + count),
-                        _mm256_maskz_compress_epi32(near, ids));
-    count += static_cast<std::size_t>(__builtin_popcount(near));
-  }
-  return count;
-}
-
 void halfKickAvx512(const DriftPass&, std::size_t, std::size_t) {}
 std::size_t nearCandidatesAvx512(const NearScan&, std::size_t, std::size_t, const double[3],
                                  std::uint32_t, std::uint32_t*) {
