@@ -363,6 +363,28 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
   // The end of the parallel region is the barrier; its caller then swaps the tables.
 }
 
+// Particle i's opening half-kick with accelerations a (linear) and b (angular), its drift and
+// its predicted velocities for the contact law; returns its squared displacement since the
+// last list build. The one place these operations are written, for the drift pass and for the
+// fused step alike, so that both give the same bits.
+inline double DemSolver::driftParticle(std::size_t i, const double* a, const double* b) {
+  const double dt = params_.dt, h = 0.5 * dt;
+  double* x = &state_.position[3 * i];
+  double* v = &state_.velocity[3 * i];
+  double* w = &state_.angularVelocity[3 * i];
+  double d2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    v[k] += h * a[k];
+    w[k] += h * b[k];
+    x[k] += dt * v[k];
+    const double d = x[k] - refPos_[3 * i + k];
+    d2 += d * d;
+    vPred_[3 * i + k] = v[k] + h * a[k];
+    wPred_[3 * i + k] = w[k] + h * b[k];
+  }
+  return d2;
+}
+
 // Without openNext the accelerations are kept for the next step's drift pass (and the
 // checkpoints); with it, that drift happens here, in drift()'s operations and order, and the
 // accelerations are not needed again.
@@ -381,50 +403,21 @@ inline double DemSolver::finishParticle(std::size_t i, const double* a, const do
     }
     return 0.0;
   }
-  const double dt = params_.dt, h = 0.5 * dt;
-  double* x = &state_.position[3 * i];
-  const double* x0 = &refPos_[3 * i];
-  double* vp = &vPred_[3 * i];
-  double* wp = &wPred_[3 * i];
-  double d2 = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    v[k] += kick * a[k]; // this step's closing half-kick
+  for (int k = 0; k < 3; ++k) { // this step's closing half-kick
+    v[k] += kick * a[k];
     w[k] += kick * b[k];
-    v[k] += h * a[k]; // the next step's opening half-kick and drift
-    w[k] += h * b[k];
-    x[k] += dt * v[k];
-    const double d = x[k] - x0[k];
-    d2 += d * d;
-    vp[k] = v[k] + h * a[k];
-    wp[k] = w[k] + h * b[k];
   }
-  return d2;
+  return driftParticle(i, a, b);
 }
 
 // ---------------------------------------------------------------------------------------------
 // The opening half-kick and the drift, on every thread of a parallel region; moved_ gets the
 // largest squared displacement since the last build.
 void DemSolver::drift() {
-  const double dt = params_.dt, h = 0.5 * dt;
-  double* x = state_.position.data();
-  double* v = state_.velocity.data();
-  double* w = state_.angularVelocity.data();
   double moved = 0.0;
 #pragma omp for schedule(static) nowait
-  for (std::size_t i = 0; i < n_; ++i) {
-    double d2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const std::size_t a = 3 * i + k;
-      v[a] += h * acc_[a];
-      w[a] += h * alpha_[a];
-      x[a] += dt * v[a];
-      const double d = x[a] - refPos_[a];
-      d2 += d * d;
-      vPred_[a] = v[a] + h * acc_[a];
-      wPred_[a] = w[a] + h * alpha_[a];
-    }
-    moved = std::max(moved, d2);
-  }
+  for (std::size_t i = 0; i < n_; ++i)
+    moved = std::max(moved, driftParticle(i, &acc_[3 * i], &alpha_[3 * i]));
 #pragma omp critical(ck_dem_moved)
   moved_ = std::max(moved_, moved);
 #pragma omp barrier

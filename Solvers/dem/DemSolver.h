@@ -137,6 +137,9 @@ private:
   // displacement since the last build (openNext) or 0.
   double finishParticle(std::size_t i, const double* a, const double* b, double kick,
                         bool openNext);
+  // Particle i's opening half-kick (accelerations a, b), drift and predicted velocities; its
+  // squared displacement since the last build. Shared by drift() and the fused step.
+  double driftParticle(std::size_t i, const double* a, const double* b);
   template <class Law> double elasticEnergyWith(const Law& pairLaw, const Law& wallLaw) const;
   void warn(const std::string& message);
 
