@@ -17,6 +17,12 @@
 namespace craterkit {
 namespace {
 
+// The AVX-512 passes where the processor has the whole x86-64-v4 level (asked once).
+bool useAvx512() {
+  static const bool on = bondedpass::avx512Available();
+  return on;
+}
+
 // Sum of f(i) over [0, n) in chunks of fixed size, chunk sums added in chunk order: the same
 // bits for any number of threads.
 template <class F> double chunkedSum(std::size_t n, F&& f) {
@@ -135,7 +141,7 @@ void BondedSolver::buildPairs() {
   }
   const bondedpass::NearScan scan{cellX_.data(), cellY_.data(), cellZ_.data(), cellId_.data(),
                                   reach2};
-  static const bool avx512 = bondedpass::avx512Available();
+  const bool avx512 = useAvx512();
   const auto nearCandidates =
       avx512 ? bondedpass::nearCandidatesAvx512 : bondedpass::nearCandidates;
   using Entry = std::pair<std::uint32_t, double>;
@@ -232,7 +238,7 @@ void BondedSolver::computeForces(bool kick) {
   pass.rest = rest_.data();
   pass.breaks = blockBreaks_.data();
   pass.force = force_.data();
-  static const bool avx512 = bondedpass::avx512Available();
+  const bool avx512 = useAvx512();
   // The AVX-512 kick-drift does this half kick at the next step with the same operation.
   pass.v = kick && !avx512 ? sys_.velocities.data() : nullptr;
   kickPending_ = kick && avx512;

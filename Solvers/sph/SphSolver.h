@@ -105,6 +105,7 @@ private:
   // difference of a step of dt whose predictor's rates are k2 (worst: its particle).
   double limitStep(const SphState& s, const Rates& r, double maxSignal) const;
   double stepError(double dt, const Rates& k2, std::size_t& worst) const;
+  double courantLimit(std::size_t i) const;
   // The list entries the pair terms visit for a rigid particle: those of partners that are not
   // rigid at the same velocity (a pair of walls at rest adds only exact zeros). Follows the list.
   void filterRigidPairs(const SphState& s) const;

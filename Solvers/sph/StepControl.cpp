@@ -10,40 +10,44 @@
 
 namespace craterkit {
 
+namespace {
+
+// Δt ≤ f sqrt(h / |a|) for a particle of smoothing length h and acceleration a (∞ at rest).
+double forceLimit(const SphParams& par, double h, const double* a) {
+  const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+  return a2 > 0.0 ? par.forceFactor * std::sqrt(h / std::sqrt(a2)) : INFINITY;
+}
+
+} // namespace
+
 double SphSolver::limitStep(const SphState& s, const Rates& r, double maxSignal) const {
   double dt = maxSignal > 0.0 ? par_.courant / maxSignal : INFINITY;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const double a2 = r.dv[3 * i] * r.dv[3 * i] + r.dv[3 * i + 1] * r.dv[3 * i + 1] +
-                      r.dv[3 * i + 2] * r.dv[3 * i + 2];
-    if (a2 > 0.0)
-      dt = std::min(dt, par_.forceFactor * std::sqrt(s.h[i] / std::sqrt(a2)));
-  }
+  for (std::size_t i = 0; i < s.size(); ++i)
+    dt = std::min(dt, forceLimit(par_, s.h[i], &r.dv[3 * i]));
   return dt;
+}
+
+// Particle i's Courant limit from its signal speed over h/2 in the last rates (∞ without one).
+double SphSolver::courantLimit(std::size_t i) const {
+  return i < signal_.size() && signal_[i] > 0.0 ? par_.courant / signal_[i] : INFINITY;
 }
 
 SphSolver::Limits SphSolver::limits() const {
   Limits l;
   for (std::size_t i = 0; i < s_.size(); ++i) {
-    if (i < signal_.size() && signal_[i] > 0.0 && par_.courant / signal_[i] < l.courant)
-      l.courant = par_.courant / signal_[i], l.courantParticle = i;
-    const double* a = &k1_.dv[3 * i];
-    const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
-    if (a2 > 0.0 && par_.forceFactor * std::sqrt(s_.h[i] / std::sqrt(a2)) < l.force)
-      l.force = par_.forceFactor * std::sqrt(s_.h[i] / std::sqrt(a2)), l.forceParticle = i;
+    if (courantLimit(i) < l.courant)
+      l.courant = courantLimit(i), l.courantParticle = i;
+    const double f = forceLimit(par_, s_.h[i], &k1_.dv[3 * i]);
+    if (f < l.force)
+      l.force = f, l.forceParticle = i;
   }
   return l;
 }
 
 std::vector<double> SphSolver::particleSteps() const {
-  std::vector<double> dt(s_.size(), INFINITY);
-  for (std::size_t i = 0; i < s_.size(); ++i) {
-    if (i < signal_.size() && signal_[i] > 0.0)
-      dt[i] = par_.courant / signal_[i];
-    const double* a = &k1_.dv[3 * i];
-    const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
-    if (a2 > 0.0)
-      dt[i] = std::min(dt[i], par_.forceFactor * std::sqrt(s_.h[i] / std::sqrt(a2)));
-  }
+  std::vector<double> dt(s_.size());
+  for (std::size_t i = 0; i < s_.size(); ++i)
+    dt[i] = std::min(courantLimit(i), forceLimit(par_, s_.h[i], &k1_.dv[3 * i]));
   return dt;
 }
 
