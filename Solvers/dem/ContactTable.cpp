@@ -20,6 +20,23 @@ void ContactTable::resize(std::size_t count) {
   result.resize(kResultWords * count);
 }
 
+void ContactTable::reserveRows(std::size_t count) {
+  if (count <= first.size())
+    return;
+  first.resize(count);
+  second.resize(count);
+  from.resize(count);
+  for (std::vector<double>& h : history)
+    h.resize(count + 1);
+  result.resize(kResultWords * count);
+}
+
+void ContactTable::setRows(std::size_t count) {
+  rows = count;
+  for (std::vector<double>& h : history)
+    h[count] = 0.0;
+}
+
 ContactHistory ContactTable::historyAt(std::size_t c) const {
   ContactHistory h;
   for (int k = 0; k < 3; ++k) {

@@ -38,6 +38,12 @@ struct ContactTable {
 
   // Sets the number of rows (keeping the memory) and zeroes the history row past the end.
   void resize(std::size_t count);
+  // Room for `count` rows and the zero row, rows unchanged (the arrays only grow), so that
+  // setRows up to it allocates nothing and one thread of a parallel region may call it.
+  void reserveRows(std::size_t count);
+  std::size_t room() const { return first.size(); }
+  // Sets the number of rows (at most room()) and zeroes the history row past the end.
+  void setRows(std::size_t count);
   ContactHistory historyAt(std::size_t row) const;
   void setHistory(std::size_t row, const ContactHistory& h);
   // Drops the rows of removed particles and renumbers the rest (newIndex is increasing, so

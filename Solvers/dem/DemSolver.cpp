@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -21,6 +22,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 inline Vec at(const std::vector<double>& a, std::size_t i) {
   return Vec(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
+}
+
+inline double seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 } // namespace
@@ -203,10 +208,14 @@ void DemSolver::computeForces(double kick, bool openNext) {
 #pragma omp parallel if (n_ >= kDemParallelMin)
   forcePhases(kick, openNext);
   current_ = 1 - current_;
+  pairShares_.update();
+  particleShares_.update();
 }
 
 // Before a parallel region that evaluates forces, so that the region needs no `single` for
-// it: room for the per-thread results of as many threads as the region can have.
+// it: room for the per-thread results of as many threads as the region can have, for the
+// per-particle index, and for the next table's rows (those of the last one and some more: a
+// step that finds more grows it in the region, at the cost of one more barrier).
 void DemSolver::prepareForces() {
 #ifdef _OPENMP
   const std::size_t most = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
@@ -215,7 +224,12 @@ void DemSolver::prepareForces() {
 #endif
   if (touching_.size() < most)
     touching_.resize(most);
-  touchingStart_.assign(most + 1, 0);
+  touchingCount_.assign(kPad * most, 0);
+  pairShares_.resize(most);
+  particleShares_.resize(most);
+  contactsOf_.resize(n_, pairs_.size());
+  const std::size_t last = tables_[current_].rows;
+  tables_[1 - current_].reserveRows(last + last / 8 + 1024);
   worstOverlap_ = 0.0;
   movedNext_ = 0.0;
 }
@@ -234,9 +248,13 @@ void DemSolver::forcePhases(double kick, bool openNext) {
 
 // The pairs in contact now, in the order of the list, become the rows of the next table:
 // each thread tests one contiguous block of pairs, in the order of the thread numbers
-// (dem/TouchingPairs.h), then writes its rows after those of the threads before it.
-void DemSolver::collectContacts() {
-  const int threads = threadCount(), me = threadNumber();
+// (dem/TouchingPairs.h), then writes its rows after those of the threads before it. Every
+// thread sums the counts itself, so that one barrier separates the two. Returns the seconds
+// this thread worked (the wait at the barrier left out).
+double DemSolver::collectContacts(std::size_t* rowBegin, std::size_t* rowEnd) {
+  const double start = seconds();
+  const std::size_t t = static_cast<std::size_t>(threadCount()),
+                    me = static_cast<std::size_t>(threadNumber());
   const ContactTable& before = tables_[current_];
   ContactTable& now = tables_[1 - current_];
   const double* x = state_.position.data();
@@ -244,23 +262,31 @@ void DemSolver::collectContacts() {
   const std::uint32_t* first = pairs_.first.data();
   const std::uint32_t* second = pairs_.second.data();
   char* active = pairs_.active.data();
-  std::vector<std::uint32_t>& mine = touching_[static_cast<std::size_t>(me)];
-  const std::size_t pairs = pairs_.size(), t = static_cast<std::size_t>(threads);
-  const std::size_t begin = pairs * static_cast<std::size_t>(me) / t,
-                    end = pairs * (static_cast<std::size_t>(me) + 1) / t;
+  std::vector<std::uint32_t>& mine = touching_[me];
+  const std::size_t pairs = pairs_.size();
+  const std::size_t begin = pairShares_.begin(pairs, me, t),
+                    end = pairShares_.begin(pairs, me + 1, t);
   mine.resize(end - begin + 1);
   const std::size_t found = findTouchingPairs(x, r, first, second, active, begin, end, mine.data());
-  touchingStart_[static_cast<std::size_t>(me) + 1] = found;
+  touchingCount_[kPad * me] = found;
+  const double searched = seconds() - start;
+#pragma omp barrier
+  std::size_t c = 0, total = 0;
+  for (std::size_t q = 0; q < t; ++q) {
+    c = q == me ? total : c;
+    total += touchingCount_[kPad * q];
+  }
+  if (total > now.room()) { // the same on every thread
 #pragma omp barrier
 #pragma omp single
-  {
-    for (std::size_t q = 0; q < t; ++q)
-      touchingStart_[q + 1] += touchingStart_[q];
-    now.resize(touchingStart_[t]);
-    contactsOf_.resize(n_, pairs);
+    now.reserveRows(total + total / 8);
   }
+  if (me == 0)
+    now.setRows(total);
+  *rowBegin = c;
+  *rowEnd = c + found;
+  const double filling = seconds();
   std::uint32_t* row = pairs_.row.data();
-  std::size_t c = touchingStart_[static_cast<std::size_t>(me)];
   for (std::size_t q = 0; q < found; ++q) {
     const std::uint32_t k = mine[q];
     now.first[c] = first[k];
@@ -269,31 +295,39 @@ void DemSolver::collectContacts() {
     active[k] = 1;
     row[k] = static_cast<std::uint32_t>(c++);
   }
-#pragma omp barrier
+  return searched + (seconds() - filling);
 }
 
 // Forces and torques at the current positions; with kick > 0 the closing half-kick of the
 // step (v += kick a) is applied in the gather, while the accelerations are in registers.
+// Each thread evaluates the rows it wrote (no barrier between), so its share of the pairs sets
+// both; after one barrier it indexes and sums the particles of its range.
 template <class Law> void DemSolver::forcePhasesWith(const Law& pairLaw, const Law& wallLaw,
                                                      double kick, bool openNext) {
-  collectContacts();
+  std::size_t rowBegin = 0, rowEnd = 0;
+  const double collected = collectContacts(&rowBegin, &rowEnd);
+  const double evaluating = seconds();
   const FrictionConstants fc(params_.contact);
   const std::size_t threads = static_cast<std::size_t>(threadCount());
   const std::size_t me = static_cast<std::size_t>(threadNumber());
   const ContactInputs in{state_.position.data(), state_.radius.data(), state_.mass.data(),
                          vPred_.data(), wPred_.data()};
-  ContactTable& now = tables_[1 - current_];
-  const std::size_t rows = now.rows;
-  const double worst = evaluateContacts(pairLaw, fc, params_.dt, in, tables_[current_], now,
-                                        rows * me / threads, rows * (me + 1) / threads);
-  contactsOf_.index(now, pairs_.secondStart, n_, me, threads);
+  const double worst = evaluateContacts(pairLaw, fc, params_.dt, in, tables_[current_],
+                                        tables_[1 - current_], rowBegin, rowEnd);
+  pairShares_.record(me, threads, collected + (seconds() - evaluating));
 #pragma omp barrier
-  gatherForces(wallLaw, fc, kick, openNext, worst);
+  const double start = seconds();
+  const std::size_t lo = particleShares_.begin(n_, me, threads),
+                    hi = particleShares_.begin(n_, me + 1, threads);
+  contactsOf_.index(tables_[1 - current_], pairs_.secondStart, lo, hi);
+  gatherForces(wallLaw, fc, kick, openNext, worst, lo, hi);
+  particleShares_.record(me, threads, seconds() - start);
 }
 
 // Each particle sums its pairs in contact in index order, then its walls in wall order.
 template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const FrictionConstants& fc,
-                                                  double kick, bool openNext, double worst) {
+                                                  double kick, bool openNext, double worst,
+                                                  std::size_t lo, std::size_t hi) {
   const ContactParams& cp = params_.contact;
   const double dt = params_.dt;
   const ParticleSet& s = state_;
@@ -307,9 +341,9 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
   const Gravity& gravity = params_.gravity;
   const bool uniform = gravity.type == Gravity::Type::Uniform;
   double moved = 0.0;
-  // Static: each thread gathers the particles it drifted, whose data its cache holds.
-#pragma omp for schedule(static) nowait
-  for (std::size_t i = 0; i < n_; ++i) {
+  // The particles [lo, hi) of this thread, indexed by it (and drifted by it in the last step,
+  // their data in its cache).
+  for (std::size_t i = lo; i < hi; ++i) {
     Vec f = Vec::Zero(), t = Vec::Zero();
     // Only the pairs in contact, in the order of the pair list (dem/ParticleContacts.h).
     for (std::size_t c = pc.firstBegin[i], e = c + pc.firstCount[i]; c < e; ++c) {
@@ -415,8 +449,10 @@ inline double DemSolver::finishParticle(std::size_t i, const double* a, const do
 // largest squared displacement since the last build.
 void DemSolver::drift() {
   double moved = 0.0;
-#pragma omp for schedule(static) nowait
-  for (std::size_t i = 0; i < n_; ++i)
+  const std::size_t threads = static_cast<std::size_t>(threadCount());
+  const std::size_t me = static_cast<std::size_t>(threadNumber());
+  const std::size_t hi = particleShares_.begin(n_, me + 1, threads);
+  for (std::size_t i = particleShares_.begin(n_, me, threads); i < hi; ++i)
     moved = std::max(moved, driftParticle(i, &acc_[3 * i], &alpha_[3 * i]));
 #pragma omp critical(ck_dem_moved)
   moved_ = std::max(moved_, moved);
@@ -449,6 +485,8 @@ void DemSolver::advance(bool openNext) {
   }
   if (listHolds()) {
     current_ = 1 - current_; // the forces of the region above
+    pairShares_.update();
+    particleShares_.update();
   } else {
     // A non-finite position would poison the cell list: report it here.
     const std::vector<double>& x = state_.position;

@@ -10,7 +10,9 @@
 // found and written to a compact table (dem/ContactTable.h), the contact law runs over the
 // table's rows, then each particle sums its pairs in contact in index order
 // (reading only the contact flags of the others) and its walls. A step is one parallel region
-// (drift, contacts, law and gather separated by barriers), two when the list is rebuilt.
+// (contact search; the rows' fill and contact law; the gather: two barriers), two regions when
+// the list is rebuilt. Each thread's ranges follow the threads' measured times
+// (dem/WorkShares.h); which thread does an item never changes its arithmetic.
 // A new run first orders the particles along a Morton curve of their cells, so that
 // neighbours sit close in memory (the output keeps each particle's Id, not its input
 // position). The result is bit-identical for any thread count, and a run resumed from a checkpoint
@@ -26,6 +28,7 @@
 #include "dem/PairList.h"
 #include "dem/ParticleContacts.h"
 #include "dem/Walls.h"
+#include "dem/WorkShares.h"
 
 #include <Eigen/Core>
 
@@ -127,11 +130,13 @@ private:
   void prepareForces();
   void drift();
   void forcePhases(double kick, bool openNext);
-  void collectContacts();
+  // Finds this thread's pairs in contact and writes them as rows [*rowBegin, *rowEnd).
+  double collectContacts(std::size_t* rowBegin, std::size_t* rowEnd);
   template <class Law>
   void forcePhasesWith(const Law& pairLaw, const Law& wallLaw, double kick, bool openNext);
   template <class Law> void gatherForces(const Law& wallLaw, const FrictionConstants& fc,
-                                         double kick, bool openNext, double worst);
+                                         double kick, bool openNext, double worst, std::size_t lo,
+                                         std::size_t hi);
   // The end of particle i's gather: accelerations a, b; closing half-kick; with openNext the
   // next step's opening half-kick, drift and predicted velocities. Returns the squared
   // displacement since the last build (openNext) or 0.
@@ -158,9 +163,13 @@ private:
   WallContacts wallContacts_;
   std::vector<std::uint64_t> wallNear_; // per particle: walls within r + skin at the last build
   ParticleContacts contactsOf_;         // each particle's rows of the new table
-  // Per thread: the pairs it found in contact; where each thread's rows start.
+  // Per thread: the pairs it found in contact, and how many (kPad apart: one cache line each).
   std::vector<std::vector<std::uint32_t>> touching_;
-  std::vector<std::size_t> touchingStart_;
+  std::vector<std::size_t> touchingCount_;
+  static constexpr std::size_t kPad = 8;
+  // Each thread's range of the listed pairs (contact search and law) and of the particles
+  // (force sum and drift), adjusted to the threads' measured times (dem/WorkShares.h).
+  WorkShares pairShares_, particleShares_;
   double moved_ = 0.0; // largest squared displacement since the last build
   // The gather of the last step drifted the particles already (state_ holds the next step's
   // positions and half-step velocities; only ever true inside advanceSteps and advanceTo),

@@ -12,24 +12,23 @@ void ParticleContacts::resize(std::size_t n, std::size_t pairs) {
 }
 
 void ParticleContacts::index(const ContactTable& table, const std::vector<std::size_t>& secondStart,
-                             std::size_t n, std::size_t t, std::size_t T) {
-  const std::uint32_t lo = static_cast<std::uint32_t>(n * t / T),
-                      hi = static_cast<std::uint32_t>(n * (t + 1) / T);
+                             std::size_t lo, std::size_t hi) {
   std::fill(firstCount.begin() + lo, firstCount.begin() + hi, 0u);
   std::fill(secondCount.begin() + lo, secondCount.begin() + hi, 0u);
   const std::uint32_t *first = table.first.data(), *second = table.second.data();
   const std::size_t rows = table.rows;
-  // The table is sorted by first member: this thread's first members are one block of rows.
-  const std::size_t begin =
-      static_cast<std::size_t>(std::lower_bound(first, first + rows, lo) - first);
-  const std::size_t end =
-      static_cast<std::size_t>(std::lower_bound(first, first + rows, hi) - first);
+  // The table is sorted by first member: the range's first members are one block of rows.
+  const std::size_t begin = static_cast<std::size_t>(
+      std::lower_bound(first, first + rows, static_cast<std::uint32_t>(lo)) - first);
+  const std::size_t end = static_cast<std::size_t>(
+      std::lower_bound(first, first + rows, static_cast<std::uint32_t>(hi)) - first);
   for (std::size_t c = begin; c < end; ++c)
     if (firstCount[first[c]]++ == 0)
       firstBegin[first[c]] = static_cast<std::uint32_t>(c);
-  // The second members are in any order (though mostly near the first): every row is looked
-  // at, in increasing order, so that each particle's list is in the order of its first members.
-  for (std::size_t c = 0; c < rows; ++c) {
+  // The second members are in any order (though mostly near the first): the rows are looked
+  // at in increasing order, so that each particle's list is in the order of its first members.
+  // A second member of the range has a first member below hi: no row from `end` on has one.
+  for (std::size_t c = 0; c < end; ++c) {
     const std::uint32_t j = second[c];
     if (j >= lo && j < hi)
       secondRow[secondStart[j] + secondCount[j]++] = static_cast<std::uint32_t>(c);

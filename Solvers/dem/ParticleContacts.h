@@ -25,10 +25,10 @@ struct ParticleContacts {
 
   // Sizes the arrays for n particles and a pair list of `pairs` slots (once, before index()).
   void resize(std::size_t n, std::size_t pairs);
-  // Indexes the rows of `table` for the particles [n t / T, n (t + 1) / T) of thread t of T:
-  // called by every thread of a team, which together cover all particles.
-  void index(const ContactTable& table, const std::vector<std::size_t>& secondStart, std::size_t n,
-             std::size_t t, std::size_t T);
+  // Indexes the rows of `table` for the particles [lo, hi): called by every thread of a team
+  // for its own range (the one it then gathers), the ranges together covering all particles.
+  void index(const ContactTable& table, const std::vector<std::size_t>& secondStart, std::size_t lo,
+             std::size_t hi);
 };
 
 } // namespace craterkit

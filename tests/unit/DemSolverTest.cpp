@@ -5,6 +5,7 @@
 #include "common/Random.h"
 #include "dem/DemRun.h"
 #include "dem/ParticleContacts.h"
+#include "dem/WorkShares.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -344,7 +345,8 @@ TEST(DemNeighbours, ContactsMatchBruteForceOracle) {
 // The force gather sums each particle's contacts in the order of the pair list (first-member
 // rows by second member, then second-member rows by first member), which keeps the sums
 // bit-identical for any thread count: the per-particle index must list every row of the table
-// once, in that order, however many threads build it.
+// once, in that order, however many threads build it and however unevenly the particles are
+// split among them (the splits follow the threads' measured times, dem/WorkShares.h).
 TEST(DemNeighbours, ParticleContactsListEveryRowInListOrder) {
   Random rng(5);
   const std::size_t n = 300;
@@ -376,10 +378,15 @@ TEST(DemNeighbours, ParticleContactsListEveryRowInListOrder) {
     table.second[c] = rows[c].second;
   }
   for (std::size_t threads : {1u, 2u, 3u, 7u}) {
+    // Random ranges, some of them empty, covering the particles.
+    std::vector<std::size_t> cut{0, n};
+    for (std::size_t t = 1; t < threads; ++t)
+      cut.push_back(static_cast<std::size_t>(rng.uniform(0, n)));
+    std::sort(cut.begin(), cut.end());
     ParticleContacts pc;
     pc.resize(n, listed.size());
     for (std::size_t t = 0; t < threads; ++t)
-      pc.index(table, secondStart, n, t, threads);
+      pc.index(table, secondStart, cut[t], cut[t + 1]);
     for (std::size_t i = 0; i < n; ++i) {
       std::vector<std::size_t> firstWant, secondWant, firstGot, secondGot;
       for (std::size_t c = 0; c < rows.size(); ++c) {
@@ -497,6 +504,65 @@ TEST(DemRestart, ThreadCountDoesNotChangeResults) {
     many.step();
   omp_set_num_threads(threads);
   EXPECT_EQ(one.particles().position, many.particles().position);
+}
+
+// The threads' ranges follow their measured times: a thread that took three times as long for
+// an equal share gets less work, the ranges stay contiguous, cover every item and move back
+// when the times become equal; a team of another size splits evenly.
+TEST(DemThreads, WorkSharesFollowTheMeasuredTimes) {
+  WorkShares shares;
+  shares.resize(2);
+  const std::size_t total = 100000;
+  EXPECT_EQ(shares.begin(total, 1, 2), total / 2);
+  for (int step = 0; step < 50; ++step) {
+    // Thread 1 is three times slower per item: time = share / speed.
+    const double s0 = static_cast<double>(shares.begin(total, 1, 2)) / total;
+    shares.record(0, 2, s0 / 3.0);
+    shares.record(1, 2, (1.0 - s0) / 1.0);
+    shares.update();
+  }
+  // Equal times need thread 0 (three times faster) to take 3/4 of the items; the share moves
+  // 30 % of the way each step, so after 50 steps it is there to 1e-7.
+  EXPECT_NEAR(static_cast<double>(shares.begin(total, 1, 2)) / total, 0.75, 1e-4);
+  EXPECT_EQ(shares.begin(total, 0, 2), 0u);
+  EXPECT_EQ(shares.begin(total, 2, 2), total);
+  EXPECT_EQ(shares.begin(total, 1, 3), total / 3) << "a team of another size splits evenly";
+  shares.record(0, 2, 0.0); // no time: the shares stay
+  shares.update();
+  EXPECT_NEAR(static_cast<double>(shares.begin(total, 1, 2)) / total, 0.75, 1e-4);
+  for (int step = 0; step < 80; ++step) { // equal speeds: back to halves
+    const double s0 = static_cast<double>(shares.begin(total, 1, 2)) / total;
+    shares.record(0, 2, s0);
+    shares.record(1, 2, 1.0 - s0);
+    shares.update();
+  }
+  EXPECT_NEAR(static_cast<double>(shares.begin(total, 1, 2)) / total, 0.5, 1e-4);
+}
+
+// The fused steps split the pairs and the particles among the threads by their measured times,
+// which differ from run to run: the results must not. One, two and three threads (more than the
+// machine may have, so that a thread waits for a processor and the splits move) give the same
+// bits, through neighbour-list rebuilds.
+TEST(DemThreads, FusedStepsGiveTheSameBitsOnAnyThreadCount) {
+  const ParticleSet s = jostledBlock(0.5, 8, 1.0, 0.6 * kR, 20.0);
+  ASSERT_GT(s.size(), 600u);
+  const DemParams p = frictionalBox();
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  DemSolver one(s, p);
+  one.advanceSteps(600);
+  EXPECT_GT(one.neighbourBuilds(), 2u);
+  EXPECT_GT(one.diagnostics().contacts, 50u);
+  for (int t : {2, 3}) {
+    omp_set_num_threads(t);
+    DemSolver many(s, p);
+    many.advanceSteps(600);
+    EXPECT_EQ(many.particles().position, one.particles().position) << t << " threads";
+    EXPECT_EQ(many.particles().velocity, one.particles().velocity) << t << " threads";
+    EXPECT_EQ(many.particles().angularVelocity, one.particles().angularVelocity) << t;
+    EXPECT_EQ(many.diagnostics().contacts, one.diagnostics().contacts) << t << " threads";
+  }
+  omp_set_num_threads(threads);
 }
 
 // advanceSteps (and advanceTo between its progress reports and checkpoints) starts each step
