@@ -97,9 +97,11 @@ void BondedImpactParams::validate() const {
 double estimateBondedBytes(double particles) {
   // Per particle: set-up arrays (57 B), solver state x, v, f, m, body and list reference
   // (105 B), bond adjacency (~30 B), three bonds with their flags (~55 B), the pair lists in
-  // blocks of eight (~100 B) and their staging while they are rebuilt (~120 B), cell list
-  // (~50 B). Measured at the headline size: 523 B, the process's own ~10 MB included.
-  return 560.0 * particles;
+  // blocks of eight (~100 B) and their staging while they are rebuilt (~120 B), the sparse
+  // cell list (~85 B: sort buffers, each point's cell, each occupied cell's nine rows). Measured
+  // at the headline size: 523 B with the dense cell list (~50 B), the process's own ~10 MB
+  // included; the sparse one added 37 B to the peak of a window (2026-12-05).
+  return 600.0 * particles;
 }
 
 void checkBondedMemory(double particles, double limit, const char* property) {

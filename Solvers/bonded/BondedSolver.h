@@ -7,18 +7,19 @@
 //
 // Every pair of particles is handled in one fused pass per particle over its pair list: the
 // particles it may touch before the next rebuild (a full Verlet list: all particles within
-// r_eq + skin, built with the common CellList, rebuilt when a particle may have moved more than
-// half the skin: Δt times the largest speed, summed over the steps since the build) together with
-// its bonded partners however far, each entry carrying the rest length of its intact bond (or
-// none). One entry gives the pair's repulsion (closer than r_eq) and spring (stretched bond) at
-// once (ws2017::pairForceOverR), and each pair is computed twice, once from each side, with exactly
-// opposite results. The lists are stored in blocks of eight particles, entry k of the eight
-// particles side by side (padded with the particle itself, which contributes nothing), so that the
-// pass runs eight particles per SIMD instruction with every particle's own sum in its own lane, in
-// the order of its list. Each step, after the drift, a bond longer than r_cut is broken for good by
-// both its particles' passes alike (the squared distance has the same bits from either side); its
-// spring energy is booked as dissipated (so that kinetic + repulsive + bond + dissipated energy is
-// what the integrator conserves).
+// r_eq + skin, found in the 27 cells of the reach around its own (the common CellList's sparse
+// layout, whose cells keep their size however wide the debris cloud), rebuilt when a particle may
+// have moved more than half the skin: Δt times the largest speed, summed over the steps since the
+// build) together with its bonded partners however far, each entry carrying the rest length of its
+// intact bond (or none). One entry gives the pair's repulsion (closer than r_eq) and spring
+// (stretched bond) at once (ws2017::pairForceOverR), and each pair is computed twice, once from
+// each side, with exactly opposite results. The lists are stored in blocks of eight particles,
+// entry k of the eight particles side by side (padded with the particle itself, which contributes
+// nothing), so that the pass runs eight particles per SIMD instruction with every particle's own
+// sum in its own lane, in the order of its list. Each step, after the drift, a bond longer than
+// r_cut is broken for good by both its particles' passes alike (the squared distance has the same
+// bits from either side); its spring energy is booked as dissipated (so that kinetic + repulsive +
+// bond + dissipated energy is what the integrator conserves).
 //
 // Where the AVX-512 passes run, the second half kick of a step is left to the next step's
 // kick-drift (which streams v, f and m anyway) with the operation the force pass would have done,

@@ -5,6 +5,17 @@
 // of half-width `reach` around a point, so it returns a superset of the neighbours
 // within `reach`; callers test the distance themselves. The grid never has more than
 // a few cells per point, so a tiny cell size on a wide domain cannot exhaust memory.
+//
+// Two layouts answer the same queries. build(): a dense grid over the points' box, whose cells
+// grow (by 1.25 at a time) until there are at most ~4 cells per point; on a wide, thinly filled
+// domain (a debris cloud) each query then scans far more points than lie within its reach.
+// buildSparse(): cells that keep the requested size however wide the box, only the occupied ones
+// stored: the points are sorted by the linear index of their cell (z, then y, then x, a radix
+// sort: in each cell by point index), so that a row of cells along x is still one stretch of
+// sorted(), found by binary search in the occupied cells' indices; and for each occupied cell the
+// nine rows of the 3 x 3 x 3 cells around it are found once per build (forEachNeighbourRange), by
+// one merge over the sorted indices per row offset, for callers whose queries are the points
+// themselves.
 #pragma once
 
 #include <algorithm>
@@ -20,6 +31,11 @@ class CellList {
 public:
   // points: 3*n contiguous coordinates; cellSize > 0.
   void build(const double* points, std::size_t n, double cellSize);
+  // The sparse layout (see above): cells of cellSize (times 1 + 1e-8, see forEachNeighbourRange)
+  // however far the points spread, unless that makes more than 2^21 cells along an axis (then
+  // the cells grow as build()'s do). At most 2^32 - 1 points. The build's work is split over
+  // the OpenMP threads; its result does not depend on their number.
+  void buildSparse(const double* points, std::size_t n, double cellSize);
 
   // Calls visit(j) for every point j in the cells overlapping [x - reach, x + reach].
   template <class Visit>
@@ -46,8 +62,27 @@ public:
     for (long cz = lo[2]; cz <= hi[2]; ++cz)
       for (long cy = lo[1]; cy <= hi[1]; ++cy) {
         const std::size_t row = (static_cast<std::size_t>(cz) * dims_[1] + cy) * dims_[0];
-        visit(cellStart_[row + lo[0]], cellStart_[row + hi[0] + 1]);
+        if (!sparse_) {
+          visit(cellStart_[row + lo[0]], cellStart_[row + hi[0] + 1]);
+          continue;
+        }
+        const auto first = std::lower_bound(cellKey_.begin(), cellKey_.end(), row + lo[0]);
+        const auto last = std::upper_bound(first, cellKey_.end(), row + hi[0]);
+        if (first != last)
+          visit(cellStart_[first - cellKey_.begin()], cellStart_[last - cellKey_.begin()]);
       }
+  }
+
+  // After buildSparse only: the points of the 27 cells around the cell of point i of the build
+  // as ranges of sorted(), one per row of three cells along x (z, then y, ascending; empty rows
+  // left out). They hold every point closer to point i than the requested cell size on each
+  // axis: cells 1 + 1e-8 times that size keep a rounding of the divisions that place the points
+  // in cells (relative 2^-52 of up to 2^21 cells) from putting such a point two cells away.
+  template <class Visit> void forEachNeighbourRange(std::size_t i, Visit&& visit) const {
+    const std::uint32_t* r = rows_.data() + kRowEnds * pointCell_[i];
+    for (std::size_t k = 0; k < kRowEnds; k += 2)
+      if (r[k] != r[k + 1])
+        visit(std::size_t(r[k]), std::size_t(r[k + 1]));
   }
 
   // The points' indices in cell order.
@@ -55,6 +90,12 @@ public:
   double cellSize() const { return cellSize_; }
 
 private:
+  static constexpr std::size_t kRowEnds = 18; // begin and end of the nine rows around a cell
+  static constexpr int kRadixBits = 11;       // the sort's digits
+  void sortByCell(const double* points, std::size_t n);
+  void radixPass(std::size_t n, int shift);
+  void findRows();
+
   long cellCoord(double v, int k) const {
     const double c = std::floor((v - origin_[k]) / cellSize_);
     // Clamp in double first so that far-away query points cannot overflow a long.
@@ -67,6 +108,15 @@ private:
   std::size_t count_ = 0;
   std::vector<std::size_t> cellStart_; // size cells+1
   std::vector<std::size_t> sorted_;    // point indices ordered by cell
+  // The sparse layout: the occupied cells' linear indices (ascending; cellStart_ then holds
+  // their first points), each point's occupied cell and each cell's rows (kRowEnds entries).
+  bool sparse_ = false;
+  std::vector<std::uint64_t> cellKey_;
+  std::vector<std::uint32_t> pointCell_;
+  std::vector<std::uint32_t> rows_;
+  std::vector<std::uint64_t> keyOf_, keyTmp_; // the sort's buffers, kept from build to build
+  std::vector<std::uint32_t> idOf_, idTmp_;
+  std::vector<std::size_t> radixCount_;
 };
 
 } // namespace craterkit

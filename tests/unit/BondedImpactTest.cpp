@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -68,6 +69,52 @@ BondedImpactParams smallImpact(double speed, double particles) {
   p.plateWidthRatio = 2.5;
   p.seed = 7;
   return p;
+}
+
+// The solver's forces against a sum over all pairs (the repulsion of every pair closer than r_eq,
+// the spring of every intact bond), as the largest difference in units of the rounding allowed
+// (the reason for the allowance: above ForcesEqualAllPairsSumThroughAnImpact).
+double worstForceDifference(const BondedSolver& solver) {
+  const BondedSystem& s = solver.system();
+  const ws2017::Law& law = s.law;
+  const double rEq2 = law.rEq() * law.rEq();
+  const std::size_t n = s.size();
+  std::vector<double> f(3 * n, 0.0), scale(n, 0.0);
+  auto add = [&](std::size_t i, std::size_t j, double forceOverR) {
+    for (int k = 0; k < 3; ++k) {
+      const double t = forceOverR * (s.positions[3 * i + k] - s.positions[3 * j + k]);
+      f[3 * i + k] += t, f[3 * j + k] -= t;
+      scale[i] += std::abs(t), scale[j] += std::abs(t);
+    }
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      double r2 = 0.0, fr = 0.0;
+      for (int k = 0; k < 3; ++k)
+        r2 += std::pow(s.positions[3 * i + k] - s.positions[3 * j + k], 2);
+      if (r2 < rEq2) {
+        ws2017::repulsion(r2, law.sigma * law.sigma, law.epsilon, fr);
+        add(i, j, fr);
+      }
+    }
+  for (std::size_t b = 0; b < s.bonds.size(); ++b) {
+    const BondedBond& bond = s.bonds[b];
+    double r2 = 0.0, fr = 0.0;
+    for (int k = 0; k < 3; ++k)
+      r2 += std::pow(s.positions[3 * bond.i + k] - s.positions[3 * bond.j + k], 2);
+    if (!solver.bondBroken()[b]) {
+      ws2017::bondSpring(std::sqrt(r2), bond.rest, law.kappa, fr);
+      add(bond.i, bond.j, -fr);
+    }
+  }
+  double worst = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double allowed =
+          1e-12 * scale[i] + 64.0 * law.kappa * law.rEq() * std::numeric_limits<double>::epsilon();
+      worst = std::max(worst, std::abs(solver.forces()[3 * i + k] - f[3 * i + k]) / allowed);
+    }
+  return worst;
 }
 
 } // namespace
@@ -241,52 +288,15 @@ TEST(BondedImpact, BarBreaksWhereBondsPassCutoffOnly) {
 // 64 κ r_eq ε. A pair missing from a list is off by its whole term.
 TEST(BondedImpact, ForcesEqualAllPairsSumThroughAnImpact) {
   BondedSolver solver(buildBondedImpact(smallImpact(6700.0, 800)));
-  const BondedSystem& s = solver.system();
-  const ws2017::Law& law = s.law;
-  const double rEq2 = law.rEq() * law.rEq();
   std::size_t checked = 0, worstStep = 0;
   double worst = 0.0;
   for (int step = 1; step <= 3000; ++step) {
     solver.step();
     if (step % 10 != 0)
       continue;
-    const std::size_t n = s.size();
-    std::vector<double> f(3 * n, 0.0), scale(n, 0.0);
-    auto add = [&](std::size_t i, std::size_t j, double forceOverR) {
-      for (int k = 0; k < 3; ++k) {
-        const double t = forceOverR * (s.positions[3 * i + k] - s.positions[3 * j + k]);
-        f[3 * i + k] += t, f[3 * j + k] -= t;
-        scale[i] += std::abs(t), scale[j] += std::abs(t);
-      }
-    };
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i + 1; j < n; ++j) {
-        double r2 = 0.0, fr = 0.0;
-        for (int k = 0; k < 3; ++k)
-          r2 += std::pow(s.positions[3 * i + k] - s.positions[3 * j + k], 2);
-        if (r2 < rEq2) {
-          ws2017::repulsion(r2, law.sigma * law.sigma, law.epsilon, fr);
-          add(i, j, fr);
-        }
-      }
-    for (std::size_t b = 0; b < s.bonds.size(); ++b) {
-      const BondedBond& bond = s.bonds[b];
-      double r2 = 0.0, fr = 0.0;
-      for (int k = 0; k < 3; ++k)
-        r2 += std::pow(s.positions[3 * bond.i + k] - s.positions[3 * bond.j + k], 2);
-      if (!solver.bondBroken()[b]) {
-        ws2017::bondSpring(std::sqrt(r2), bond.rest, law.kappa, fr);
-        add(bond.i, bond.j, -fr);
-      }
-    }
-    for (std::size_t i = 0; i < n; ++i)
-      for (int k = 0; k < 3; ++k) {
-        const double allowed = 1e-12 * scale[i] + 64.0 * law.kappa * law.rEq() *
-                                                      std::numeric_limits<double>::epsilon();
-        const double e = std::abs(solver.forces()[3 * i + k] - f[3 * i + k]) / allowed;
-        if (e > worst)
-          worst = e, worstStep = static_cast<std::size_t>(step);
-      }
+    const double e = worstForceDifference(solver);
+    if (e > worst)
+      worst = e, worstStep = static_cast<std::size_t>(step);
     ++checked;
   }
   std::printf("[bonded] lists against all pairs: %zu checks over %llu steps, %zu list builds, "
@@ -296,6 +306,48 @@ TEST(BondedImpact, ForcesEqualAllPairsSumThroughAnImpact) {
   EXPECT_GT(solver.brokenBonds(), 0u);
   EXPECT_GT(solver.listBuilds(), 10u);
   EXPECT_LT(worst, 1.0);
+}
+
+// The same on a cloud spread thousands of reaches wide and mostly empty (the late debris cloud,
+// where the dense grid's cells would be many reaches wide): the impact plus pairs of free
+// particles far out, closer than r_eq so that they push apart; 1 and 2 threads, the same bits.
+TEST(BondedImpact, ForcesEqualAllPairsSumOnASpreadOutCloud) {
+  BondedSystem start = buildBondedImpact(smallImpact(6700.0, 800));
+  const double rEq = start.law.rEq(), mass = start.masses.back();
+  for (int pair = 0; pair < 6; ++pair)
+    for (int side = 0; side < 2; ++side) {
+      const double far = (pair % 2 ? -1.0 : 1.0) * (1.0 + pair) * 800.0 * rEq;
+      const double at[3] = {far + side * 0.93 * rEq, 0.37 * far * (pair % 3), 0.11 * far};
+      for (int k = 0; k < 3; ++k) {
+        start.positions.push_back(at[k]);
+        start.velocities.push_back(k == 1 ? 100.0 * (1 - 2 * side) : 0.0);
+      }
+      start.masses.push_back(mass);
+      start.body.push_back(1);
+    }
+  const int threadsBefore = omp_get_max_threads();
+  std::vector<double> worst;
+  std::vector<std::vector<double>> ends;
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    BondedSolver solver(start);
+    worst.push_back(0.0);
+    for (int step = 1; step <= 1500; ++step) {
+      solver.step();
+      if (step % 25 == 0)
+        worst.back() = std::max(worst.back(), worstForceDifference(solver));
+    }
+    ends.push_back(solver.system().positions);
+    ends.back().insert(ends.back().end(), solver.system().velocities.begin(),
+                       solver.system().velocities.end());
+    std::printf("[bonded] spread-out cloud, %d thread(s): %zu list builds, %zu bonds broken, worst "
+                "difference %.2f of the rounding allowed\n",
+                threads, solver.listBuilds(), solver.brokenBonds(), worst.back());
+  }
+  omp_set_num_threads(threadsBefore);
+  EXPECT_LT(worst[0], 1.0);
+  EXPECT_LT(worst[1], 1.0);
+  EXPECT_TRUE(sameBits(ends[0], ends[1]));
 }
 
 // Sphere on plate at ~2500 particles, three speeds, 5 µs. Fragmentation must grow with v0
