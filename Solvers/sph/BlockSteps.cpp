@@ -85,10 +85,18 @@ void SphSolver::blockStart(double dtAsk) {
 void SphSolver::blockLimit(std::uint64_t t, bool all) {
   Block& b = blk_;
   std::vector<std::uint32_t>& q = b.queue;
-  if (all) {
-    q.resize(s_.size());
-    for (std::size_t i = 0; i < q.size(); ++i)
-      q[i] = static_cast<std::uint32_t>(i);
+  if (all) { // seeded with the particles that have a neighbour too far above them
+    const std::size_t n = s_.size();
+    std::vector<char>& seed = b.need;
+    seed.assign(n, 0);
+#pragma omp parallel for schedule(dynamic, 1024) if (n >= 4096)
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::uint32_t e = nb_.start()[i]; e < nb_.start()[i + 1] && !seed[i]; ++e)
+        seed[i] = b.level[nb_.entry()[e] / 32] > b.level[i] + 2;
+    q.clear();
+    for (std::size_t i = 0; i < n; ++i)
+      if (seed[i])
+        q.push_back(static_cast<std::uint32_t>(i));
   } else {
     q = b.active;
   }
@@ -250,10 +258,15 @@ double SphSolver::blockCycle(double dtAsk) {
     }
     blockPredict(next);
     b.active.clear();
+    b.need.assign(n, 0);
     for (std::size_t i = 0; i < n; ++i)
-      if (b.t1[i] == next)
+      if (b.t1[i] == next) {
         b.active.push_back(static_cast<std::uint32_t>(i));
-    settle(s_, p_, c_);
+        b.need[i] = 1;
+        for (std::uint32_t e = nb_.start()[i]; e < nb_.start()[i + 1]; ++e)
+          b.need[nb_.entry()[e] / 32] = 1;
+      }
+    settle(s_, p_, c_, &b.need); // the walls only where an update reads them
     computeRates(s_, p_, c_, k2_, &b.active);
     errMax = std::max(errMax, blockClose(next));
     ++b.stats.substeps;

@@ -61,7 +61,8 @@ void SphSolver::imageShift(std::uint32_t code, double d[3]) const {
     d[k] = sh[k] * (par_.boxHi[k] - par_.boxLo[k]);
 }
 
-void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>& c) const {
+void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>& c,
+                       const std::vector<char>* need) const {
   const std::size_t n = s.size();
   for (int k = 0; k < 3; ++k) {
     if (!par_.periodic[k])
@@ -79,7 +80,7 @@ void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>&
   }
   eosAndYield(s, p, c, !par_.summationDensity);
   if (par_.walls == SphParams::Walls::Extrapolated)
-    walls_.apply(s, p, c, par_, nb_);
+    walls_.apply(s, p, c, par_, nb_, need);
 }
 
 void SphSolver::eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c,

@@ -104,7 +104,9 @@ private:
   void enterLateStage(bool scaleStress);
   // Positions into the periodic box, h from ρ, ρ by summation when asked, then pressure and
   // sound speed into p and c and the yield limit on the deviatoric stress.
-  void settle(SphState& s, std::vector<double>& p, std::vector<double>& c) const;
+  // With `need`, the walls' pressure only where need[i] != 0 (block steps).
+  void settle(SphState& s, std::vector<double>& p, std::vector<double>& c,
+              const std::vector<char>* need = nullptr) const;
   // With `withH`, each particle's h from its density first, in the same pass.
   void eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c, bool withH) const;
   void densityBySummation(SphState& s) const;
@@ -133,6 +135,7 @@ private:
     std::vector<int> level;
     std::vector<double> cap, want;
     std::vector<std::uint32_t> active, queue;
+    std::vector<char> need; // the active particles and their listed neighbours
     double tick = 0.0;
     std::uint64_t end = 0;
     BlockStats stats;
