@@ -45,6 +45,11 @@ void SphParams::validate() const {
     throw InputError("SPH: the late-stage time must be finite (negative: no late stage)");
   if (lateStageTime >= 0.0 && !(lateStageSoundSpeed > 0.0 && std::isfinite(lateStageSoundSpeed)))
     throw InputError("SPH: the late-stage sound speed must be positive");
+  if (!(blockStepLevels >= 0 && blockStepLevels <= 12))
+    throw InputError("SPH: the block-step levels (BlockStepLevels) must be in [0, 12]");
+  if (blockStepLevels > 0 && (xsph > 0.0 || summationDensity))
+    throw InputError("SPH: block steps (BlockStepLevels > 0) need XSPH off and the integrated "
+                     "density (no summation density)");
 }
 
 void bodyForce(const SphParams& par, const double* x, double g[3]) {

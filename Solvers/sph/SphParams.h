@@ -74,6 +74,11 @@ struct SphParams {
   // and its deviatoric stress. The impact set-up's container takes 1: it must absorb the shock
   // (sph/ImpactSetup.cpp).
   double wallViscosity = 0.0;
+  // Individual time steps in the late stage (sph/BlockSteps.cpp, docs/physics.md §2.8): each
+  // particle steps by its own power of two of the smallest step, up to 2^blockStepLevels of it,
+  // and only particles at the end of their step have their rates evaluated (0, the default: one
+  // step for all, Heun's scheme with error control). Needs the integrated density and no XSPH.
+  int blockStepLevels = 0;
   void validate() const;
 };
 

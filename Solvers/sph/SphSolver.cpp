@@ -61,7 +61,8 @@ void SphSolver::imageShift(std::uint32_t code, double d[3]) const {
     d[k] = sh[k] * (par_.boxHi[k] - par_.boxLo[k]);
 }
 
-void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>& c) const {
+void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>& c,
+                       const std::vector<char>* need) const {
   const std::size_t n = s.size();
   for (int k = 0; k < 3; ++k) {
     if (!par_.periodic[k])
@@ -79,7 +80,7 @@ void SphSolver::settle(SphState& s, std::vector<double>& p, std::vector<double>&
   }
   eosAndYield(s, p, c, !par_.summationDensity);
   if (par_.walls == SphParams::Walls::Extrapolated)
-    walls_.apply(s, p, c, par_, nb_);
+    walls_.apply(s, p, c, par_, nb_, need);
 }
 
 void SphSolver::eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c,
@@ -261,7 +262,8 @@ template <class K, bool Xsph> CK_SIMD_CLONES PairSums pairSums(const Packed* Pp,
 
 template <class K, bool Xsph>
 double SphSolver::rates(const SphState& s, const std::vector<double>& p,
-                        const std::vector<double>& c, Rates& r) const {
+                        const std::vector<double>& c, Rates& r,
+                        const std::vector<std::uint32_t>* active) const {
   const std::size_t n = s.size();
   r.dx.assign(par_.xsph > 0.0 ? 3 * n : 0, 0.0);
   r.dv.resize(3 * n);
@@ -269,8 +271,11 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
   r.du.resize(n);
   r.dS.resize(6 * n);
   const bool hasFlaws = !fracture_.empty();
-  r.damage.rate.assign(hasFlaws ? n : 0, 0.0);
-  r.damage.cap.assign(hasFlaws ? n : 0, 0.0);
+  // Particles without flaws keep the zeros of the first call; the others are set below.
+  if (r.damage.rate.size() != (hasFlaws ? n : 0)) {
+    r.damage.rate.assign(hasFlaws ? n : 0, 0.0);
+    r.damage.cap.assign(hasFlaws ? n : 0, 0.0);
+  }
   signal_.resize(n);
   double* const sigOut = signal_.data();
   std::vector<double> G(par_.materials.size());
@@ -328,8 +333,11 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
   double maxSignal = 0.0;
   // Each particle accumulates only its own rates (pairs are visited from both sides), so the
   // loop needs no atomics and gives the same bits for any thread count.
-#pragma omp parallel for schedule(dynamic, 256) reduction(max : maxSignal) if (n >= 512)
-  for (std::size_t a = 0; a < n; ++a) {
+  const std::size_t updated = active ? active->size() : n;
+  const std::uint32_t* const which = active ? active->data() : nullptr;
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : maxSignal) if (updated >= 512)
+  for (std::size_t q = 0; q < updated; ++q) {
+    const std::size_t a = which ? which[q] : q;
     const Packed& A = Pp[a];
     const bool solid = G[static_cast<std::size_t>(s.material[a])] > 0.0;
     double signal = A.c;
@@ -417,12 +425,13 @@ void SphSolver::filterRigidPairs(const SphState& s) const {
 }
 
 double SphSolver::computeRates(const SphState& s, const std::vector<double>& p,
-                               const std::vector<double>& c, Rates& r) const {
+                               const std::vector<double>& c, Rates& r,
+                               const std::vector<std::uint32_t>* active) const {
   if (par_.kernel == SphParams::Kernel::WendlandC2)
-    return par_.xsph > 0.0 ? rates<WendlandC2, true>(s, p, c, r)
-                           : rates<WendlandC2, false>(s, p, c, r);
-  return par_.xsph > 0.0 ? rates<CubicSpline, true>(s, p, c, r)
-                         : rates<CubicSpline, false>(s, p, c, r);
+    return par_.xsph > 0.0 ? rates<WendlandC2, true>(s, p, c, r, active)
+                           : rates<WendlandC2, false>(s, p, c, r, active);
+  return par_.xsph > 0.0 ? rates<CubicSpline, true>(s, p, c, r, active)
+                         : rates<CubicSpline, false>(s, p, c, r, active);
 }
 
 void SphSolver::restore(double time, std::size_t steps, double nextStep) {
@@ -452,6 +461,8 @@ void SphSolver::enterLateStage(bool scaleStress) {
 double SphSolver::step(double dt) {
   if (dt <= 0.0)
     dt = stableStep_;
+  if (late_ && par_.blockStepLevels > 0)
+    return blockCycle(dt);
   if (!late_ && par_.lateStageTime >= 0.0 && time_ + dt > par_.lateStageTime) {
     if (par_.lateStageTime - time_ <= 1e-9 * dt) {
       enterLateStage(true);

@@ -11,6 +11,10 @@
 // with the Courant and force time steps and error control (a step whose Euler predictor and
 // Heun corrector differ by more than a tolerance is taken again, shorter).
 //
+// In the late stage, optionally, individual power-of-two time steps (SphParams::
+// blockStepLevels; sph/BlockSteps.cpp): step() then takes one block cycle, after which all
+// particles are at the same time again.
+//
 // Neighbours: Verlet lists from sparse cell lists, kept over steps (sph/NeighbourList.h).
 // OpenMP over particles; each particle sums only its own rates, so results are the same bits
 // for any thread count.
@@ -71,6 +75,16 @@ public:
   // Each particle's own stable step (its Courant and force limits) in the current state: what
   // individual time steps would allow it.
   std::vector<double> particleSteps() const;
+  // Block steps (late stage with SphParams::blockStepLevels > 0): the smallest steps
+  // (substeps) and particle updates (rate evaluations of one particle) so far, the neighbours
+  // woken by the limiter, and updates at a step beyond its particle's limit (its limit fell
+  // below the cycle's smallest step).
+  struct BlockStats {
+    std::size_t substeps = 0, updates = 0, wakes = 0, overruns = 0;
+  };
+  const BlockStats& blockStats() const { return blk_.stats; }
+  // Each particle's current step in the block cycle, as log2 of the cycle's ticks.
+  const std::vector<int>& blockLevels() const { return blk_.level; }
   double kineticEnergy() const { return craterkit::kineticEnergy(s_); }
   double internalEnergy() const { return craterkit::internalEnergy(s_); }
   // In the uniform field and the point mass.
@@ -90,22 +104,49 @@ private:
   void enterLateStage(bool scaleStress);
   // Positions into the periodic box, h from ρ, ρ by summation when asked, then pressure and
   // sound speed into p and c and the yield limit on the deviatoric stress.
-  void settle(SphState& s, std::vector<double>& p, std::vector<double>& c) const;
+  // With `need`, the walls' pressure only where need[i] != 0 (block steps).
+  void settle(SphState& s, std::vector<double>& p, std::vector<double>& c,
+              const std::vector<char>* need = nullptr) const;
   // With `withH`, each particle's h from its density first, in the same pass.
   void eosAndYield(SphState& s, std::vector<double>& p, std::vector<double>& c, bool withH) const;
   void densityBySummation(SphState& s) const;
   double smoothingLength(const SphState& s, std::size_t i) const; // κ (m/ρ)^{1/3}, capped
-  // Rates of s; returns the largest signal speed over h/2.
+  // Rates of s (only of the particles in `active` when given; the others' entries are left as
+  // they are); returns the largest signal speed over h/2.
   double computeRates(const SphState& s, const std::vector<double>& p, const std::vector<double>& c,
-                      Rates& r) const;
+                      Rates& r, const std::vector<std::uint32_t>* active = nullptr) const;
   template <class K, bool Xsph> double rates(const SphState& s, const std::vector<double>& p,
-                                             const std::vector<double>& c, Rates& r) const;
+                                             const std::vector<double>& c, Rates& r,
+                                             const std::vector<std::uint32_t>* active) const;
   template <class K> void summation(SphState& s) const;
   // sph/StepControl.cpp: the Courant and force limits, and the largest relative Euler–Heun
   // difference of a step of dt whose predictor's rates are k2 (worst: its particle).
   double limitStep(const SphState& s, const Rates& r, double maxSignal) const;
   double stepError(double dt, const Rates& k2, std::size_t& worst) const;
   double courantLimit(std::size_t i) const;
+  double particleStep(std::size_t i) const; // its Courant and force limits
+  // sph/BlockSteps.cpp. Each particle's state at its last update, when that was and when its
+  // step ends (in ticks of the cycle, 2^(levels + kHeadroom) of them), its step's level (2^level
+  // ticks), its next step at most (twice its last, less after a large error), the particles at
+  // the end of their step and the limiter's work list.
+  struct Block {
+    std::vector<double> x, v, rho, u, S, damage;
+    std::vector<std::uint64_t> t0, t1;
+    std::vector<int> level;
+    std::vector<double> cap, want;
+    std::vector<std::uint32_t> active, queue;
+    std::vector<char> need; // the active particles and their listed neighbours
+    double tick = 0.0;
+    std::uint64_t end = 0;
+    BlockStats stats;
+  };
+  double blockCycle(double dt);
+  void blockStart(double dt);
+  void blockPredict(std::uint64_t t);
+  double blockClose(std::uint64_t t); // returns the largest error of the updates
+  int blockLevel(std::uint64_t t, double want) const;
+  void blockLimit(std::uint64_t t, bool all);
+  double closeParticle(std::size_t i, double dt); // one particle's update; returns its error
   // The list entries the pair terms visit for a rigid particle: those of partners that are not
   // rigid at the same velocity (a pair of walls at rest adds only exact zeros). Follows the list.
   void filterRigidPairs(const SphState& s) const;
@@ -134,6 +175,7 @@ private:
   mutable std::vector<std::int32_t> rigidSlot_;
   mutable std::size_t rigidBuild_ = 0;
   mutable std::vector<double> signal_; // each particle's signal speed over h/2 (last rates)
+  Block blk_;
   StepRecord record_;
   double time_ = 0.0, stableStep_ = 0.0;
   std::size_t steps_ = 0;

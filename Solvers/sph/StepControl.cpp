@@ -44,10 +44,14 @@ SphSolver::Limits SphSolver::limits() const {
   return l;
 }
 
+double SphSolver::particleStep(std::size_t i) const {
+  return std::min(courantLimit(i), forceLimit(par_, s_.h[i], &k1_.dv[3 * i]));
+}
+
 std::vector<double> SphSolver::particleSteps() const {
   std::vector<double> dt(s_.size());
   for (std::size_t i = 0; i < s_.size(); ++i)
-    dt[i] = std::min(courantLimit(i), forceLimit(par_, s_.h[i], &k1_.dv[3 * i]));
+    dt[i] = particleStep(i);
   return dt;
 }
 

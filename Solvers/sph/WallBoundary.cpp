@@ -46,10 +46,10 @@ double densityAtPressure(const EquationOfState& eos, double alpha, double u, dou
   return 0.5 * (lo + hi);
 }
 
-template <class K> void extrapolate(SphState& s, std::vector<double>& p, std::vector<double>& c,
-                                    const SphParams& par, const std::vector<std::uint32_t>& walls,
-                                    const std::vector<std::uint32_t>& start,
-                                    const std::vector<std::uint32_t>& entry) {
+template <class K>
+void extrapolate(SphState& s, std::vector<double>& p, std::vector<double>& c, const SphParams& par,
+                 const std::vector<std::uint32_t>& walls, const std::vector<std::uint32_t>& start,
+                 const std::vector<std::uint32_t>& entry, const std::vector<char>* need) {
   std::vector<Rheology> rh;
   for (const Material& m : par.materials)
     rh.emplace_back(m);
@@ -61,6 +61,8 @@ template <class K> void extrapolate(SphState& s, std::vector<double>& p, std::ve
 #pragma omp parallel for schedule(dynamic, 64) if (nw >= 256)
   for (std::size_t k = 0; k < nw; ++k) {
     const std::size_t w = walls[k], mw = static_cast<std::size_t>(s.material[w]);
+    if (need && !(*need)[w])
+      continue;
     const double* xw = &s.x[3 * w];
     double g[3];
     bodyForce(par, xw, g); // minus a_w = 0
@@ -123,7 +125,8 @@ void WallBoundary::compact(const SphState& s, const std::vector<char>& rigid,
 }
 
 void WallBoundary::apply(SphState& s, std::vector<double>& p, std::vector<double>& c,
-                         const SphParams& par, const NeighbourList& nb) {
+                         const SphParams& par, const NeighbourList& nb,
+                         const std::vector<char>* need) {
   std::vector<char> rigid(par.materials.size());
   bool any = false;
   for (std::size_t m = 0; m < rigid.size(); ++m)
@@ -133,9 +136,9 @@ void WallBoundary::apply(SphState& s, std::vector<double>& p, std::vector<double
   if (nb.builds() != builds_ || s.size() != size_)
     compact(s, rigid, nb);
   if (par.kernel == SphParams::Kernel::WendlandC2)
-    extrapolate<WendlandC2>(s, p, c, par, wall_, start_, entry_);
+    extrapolate<WendlandC2>(s, p, c, par, wall_, start_, entry_, need);
   else
-    extrapolate<CubicSpline>(s, p, c, par, wall_, start_, entry_);
+    extrapolate<CubicSpline>(s, p, c, par, wall_, start_, entry_, need);
 }
 
 } // namespace craterkit

@@ -59,8 +59,10 @@ public:
   // neighbour, and limits its deviatoric stress S, as above (nb: the current list). Reads only
   // non-rigid particles, so the order of the walls does not matter. Walls without such
   // neighbours keep what their own state gives: no one reads them.
+  // With `need`, only the walls i with need[i] != 0 (block steps: those an updated particle
+  // reads); the others keep what their own state gives.
   void apply(SphState& s, std::vector<double>& p, std::vector<double>& c, const SphParams& par,
-             const NeighbourList& nb);
+             const NeighbourList& nb, const std::vector<char>* need = nullptr);
 
 private:
   // The walls with non-rigid neighbours and those neighbours' list entries (index * 32 + image

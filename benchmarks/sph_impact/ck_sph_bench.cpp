@@ -14,6 +14,9 @@
 // ck_sph_bench 196 2 11.6. A window of it: CK_RESUME (a checkpoint of that set-up to start
 // from), CK_STEPS (stop after this many steps), CK_SAVE (write a checkpoint there at the end
 // and every CK_SAVE_EVERY steps), CK_TRACE (a file: one line per step with what set its size).
+// CK_BLOCK_STEPS=L: individual power-of-two steps in the late stage, up to 2^L times the smallest
+// (SphParams::blockStepLevels; a step is then a block cycle, and the smallest steps and particle
+// updates are printed at the end).
 #include "sph/ImpactSetup.h"
 #include "sph/SphRun.h"
 #include "sph/SphSolver.h"
@@ -170,6 +173,8 @@ int main(int argc, char** argv) {
   }
   if (const char* e = std::getenv("CK_DOMAIN_RADIUS"))
     prob.params.domainRadius = std::atof(e);
+  if (const char* e = std::getenv("CK_BLOCK_STEPS"))
+    prob.params.blockStepLevels = std::atoi(e);
   const char* resume = std::getenv("CK_RESUME");
   const char* save = std::getenv("CK_SAVE");
   const long long saveEvery =
@@ -232,6 +237,15 @@ int main(int argc, char** argv) {
     solver.totalMomentum(P);
     std::printf("end: t = %.9e s, %zu steps, E = %.12e J, P = (%.9e, %.9e, %.9e) kg m/s\n",
                 solver.time(), solver.steps(), solver.totalEnergy(), P[0], P[1], P[2]);
+  }
+  if (prob.params.blockStepLevels > 0) {
+    const SphSolver::BlockStats& b = solver.blockStats();
+    std::printf("block steps: %zu smallest steps, %zu particle updates (%.4f of one step for all "
+                "at each), %zu woken, %zu overruns\n",
+                b.substeps, b.updates,
+                b.substeps ? static_cast<double>(b.updates) / (static_cast<double>(n) * b.substeps)
+                           : 0.0,
+                b.wakes, b.overruns);
   }
   if (save)
     writeSphCheckpoint(save, solver.state(), solver.time(), solver.steps(), solver.stableStep());

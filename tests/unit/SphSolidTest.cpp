@@ -218,7 +218,8 @@ Material rigidFloor(const Material& soil) {
 }
 
 Collapse collapseColumn(double bulkModulus, double lateStageTime, double lateSoundSpeed,
-                        double* stepRatio = nullptr, double* stressRatio = nullptr) {
+                        double* stepRatio = nullptr, double* stressRatio = nullptr,
+                        int blockLevels = 0) {
   const double H = 0.2, W = 0.4, dx = H / 12.0, rho0 = 1500.0, g = 9.81;
   const Material soil = granularSoil(rho0, bulkModulus), floor = rigidFloor(soil);
   SphParams par;
@@ -228,6 +229,7 @@ Collapse collapseColumn(double bulkModulus, double lateStageTime, double lateSou
   par.beta = 0.0;
   par.lateStageTime = lateStageTime;
   par.lateStageSoundSpeed = lateSoundSpeed;
+  par.blockStepLevels = blockLevels;
   const int ny = 4;
   par.periodic[1] = true;
   par.boxLo[1] = 0.0;
@@ -307,11 +309,11 @@ Collapse collapseColumn(double bulkModulus, double lateStageTime, double lateSou
   for (int b = 0; b < half; ++b)
     if (top[b] > 0.0)
       runout = b + 1;
-  std::printf("column collapse (H = L0, phi = 30 deg, K = %.3g Pa%s): deposit height %.3f m, "
-              "runout %.3f m, "
-              "flank angle %.1f deg, kinetic energy left %.2e J, %zu steps\n",
-              bulkModulus, lateStageTime >= 0.0 ? ", late stage" : "", peak, runout * dx, out.angle,
-              ke, out.steps);
+  std::printf("column collapse (H = L0, phi = 30 deg, K = %.3g Pa%s, %d block levels): deposit "
+              "height %.3f m, runout %.3f m, flank angle %.2f deg, kinetic energy left %.2e J, "
+              "%zu steps, %zu particle updates\n",
+              bulkModulus, lateStageTime >= 0.0 ? ", late stage" : "", blockLevels, peak,
+              runout * dx, out.angle, ke, out.steps, solver.blockStats().updates);
   return out;
 }
 
@@ -346,6 +348,17 @@ TEST(SphSolid, LateStageSchemeKeepsTheGranularFlowWithLongSteps) {
   EXPECT_LT(late.steps, 20000u);
   EXPECT_LT(late.kinetic, 1e-3 * late.restScale);
   EXPECT_NEAR(late.angle, 30.0, 3.0);
+}
+
+// Block steps (sph/BlockSteps.cpp) in the late stage of the same column: the deposit stands at
+// the friction angle and at rest, and its flank angle agrees with the one-step-for-all run's.
+TEST(SphSolid, LateStageColumnWithBlockStepsStandsAsWithOneStep) {
+  const double K = 4e9, c = 20.0;
+  const Collapse one = collapseColumn(K, 5e-4, c);
+  const Collapse block = collapseColumn(K, 5e-4, c, nullptr, nullptr, 4);
+  EXPECT_LT(block.kinetic, 1e-3 * block.restScale);
+  EXPECT_NEAR(block.angle, 30.0, 3.0);
+  EXPECT_NEAR(block.angle, one.angle, 1.0);
 }
 
 namespace {
