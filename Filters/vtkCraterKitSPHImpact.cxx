@@ -65,6 +65,7 @@ void vtkCraterKitSPHImpact::BuildRun() {
   p.lateStageTime = this->LateStageTime;
   p.domainRadius = this->DomainRadius;
   p.lateStageSoundSpeed = this->LateStageSoundSpeed;
+  p.blockStepLevels = this->BlockStepLevels;
   this->Spacing = problem.spacing;
   this->ContainerParticles = problem.containerParticles;
   this->Run = std::make_unique<SphRun>(problem.state, p,
@@ -130,7 +131,8 @@ void vtkCraterKitSPHImpact::PrintSelf(ostream& os, vtkIndent indent) {
       "ArtificialViscosityAlpha", this->ArtificialViscosityAlpha, "ArtificialViscosityBeta",
       this->ArtificialViscosityBeta, "XSPH", this->XSPH, "CourantNumber", this->CourantNumber,
       "MinTimeStep", this->MinTimeStep, "LateStageTime", this->LateStageTime, "DomainRadius",
-      this->DomainRadius, "LateStageSoundSpeed", this->LateStageSoundSpeed, "CheckpointFile",
-      this->CheckpointFile, "CheckpointInterval", this->CheckpointInterval, "ResumeFromCheckpoint",
-      this->ResumeFromCheckpoint, "KeptStates", this->KeptStates);
+      this->DomainRadius, "LateStageSoundSpeed", this->LateStageSoundSpeed, "BlockStepLevels",
+      this->BlockStepLevels, "CheckpointFile", this->CheckpointFile, "CheckpointInterval",
+      this->CheckpointInterval, "ResumeFromCheckpoint", this->ResumeFromCheckpoint, "KeptStates",
+      this->KeptStates);
 }

@@ -96,6 +96,8 @@ public:
   vtkGetMacro(LateStageTime, double);
   vtkSetMacro(LateStageSoundSpeed, double);
   vtkGetMacro(LateStageSoundSpeed, double);
+  vtkSetMacro(BlockStepLevels, int);
+  vtkGetMacro(BlockStepLevels, int);
   vtkSetStdStringFromCharMacro(CheckpointFile);
   vtkGetCharFromStdStringMacro(CheckpointFile);
   vtkSetMacro(CheckpointInterval, int);
@@ -146,6 +148,7 @@ private:
   double LateStageTime = -1.0;
   double DomainRadius = 0.0;
   double LateStageSoundSpeed = 100.0;
+  int BlockStepLevels = 0;
   std::string CheckpointFile;
   int CheckpointInterval = 0;
   int ResumeFromCheckpoint = 0;

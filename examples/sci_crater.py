@@ -96,6 +96,9 @@ def parse_args(argv):
     g.add_argument("--late-stage-time", type=float, default=1e-3,
                    help="s; from then on the SPH solids use the late-stage scheme (a soft linear equation "
                         "of state, long steps: SPHImpact's LateStageTime); negative: never")
+    g.add_argument("--sph-block-steps", type=int, default=0,
+                   help="individual power-of-two SPH time steps in the late stage, up to 2^L times the smallest "
+                        "(SPHImpact's BlockStepLevels); 0: one step for all")
     g.add_argument("--late-stage-sound-speed", type=float, default=0.0,
                    help="m/s, of the late-stage scheme; 0: 10 sqrt(g D), ten times the crater's own speed scale")
     g.add_argument("--sph-domain-radius", type=float, default=0.0,
@@ -136,6 +139,8 @@ def parse_args(argv):
         value = getattr(args, name)
         if not (value >= 0.0 and math.isfinite(value)):
             p.error(f"--{name.replace('_', '-')} must not be negative (got {value})")
+    if not (0 <= args.sph_block_steps <= 12):
+        p.error(f"--sph-block-steps must be in [0, 12] (got {args.sph_block_steps})")
     if not (1.0 <= args.sph_coarsening <= 100.0):
         p.error(f"--sph-coarsening must be in [1, 100] (got {args.sph_coarsening})")
     if args.particles < 200:
@@ -286,6 +291,7 @@ def main(argv):
                                TargetRadius=args.sph_target_radius, TargetCoarsening=args.sph_coarsening,
                                TargetContainer=1,
                                LateStageTime=args.late_stage_time, LateStageSoundSpeed=args.late_stage_sound_speed,
+                               BlockStepLevels=args.sph_block_steps,
                                DomainRadius=args.sph_domain_radius,
                                EndTime=args.handoff_time, OutputInterval=args.handoff_time,
                                CheckpointFile=sph_checkpoint, CheckpointInterval=200,
