@@ -112,15 +112,19 @@ def sci_run(args, name, gravity, particles, packings, extra):
         return {(r["packing"], r["particles"]): r["report"] for r in json.load(f)["rows"]}
 
 
+# The graded SPH stage of the Ryugu cases, with individual time steps in its late stage (2^7 of
+# the smallest at most): the crater's D and depth as with one step for all to 0.1 %, the rim
+# 7 % wider, in half the SPH time (docs/validation.md, 2026-12-05).
 RYUGU_STAGE = ["--sph-coarsening", "15", "--sph-domain-radius", "29", "--sph-target-radius", "11.6",
-               "--late-stage-sound-speed", "0.46637"]
+               "--late-stage-sound-speed", "0.46637", "--sph-block-steps", "7"]
 SCI = {"diameter": 14.5, "rim_diameter": 18.0, "depth": 2.3}
 
 
 def sci_crater_ryugu(args):
     """The SCI crater at Ryugu's gravity (1.5e-4 m/s^2) on the coarsening-15 SPH target with
-    30,000 RCP grains, the largest run that fits 45 minutes on two cores (SPH 25 min, bed,
-    hand-off and DEM 10 min, recorded 2026-12-02): D within 15 % of 14.5 m, depth within 25 % of
+    30,000 RCP grains (737 s on two cores, recorded 2026-12-05: SPH 479 s, bed 15 s, DEM 230 s;
+    the 100,000-grain bed of sci_convergence_bed took 5,719 s with other work on the machine, past
+    45 minutes): D within 15 % of 14.5 m, depth within 25 % of
     2.3 m, rim diameter within 20 % of 18 m (Zhang et al. 2021 and docs/physics.md §4.1)."""
     r = sci_run(args, "sci_ryugu", 1.5e-4, [30000], ["RCP"], RYUGU_STAGE)[("RCP", 30000)]
     rows = []
