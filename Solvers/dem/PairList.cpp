@@ -1,6 +1,5 @@
 #include "dem/PairList.h"
 
-#include "common/CellList.h"
 #include "common/OpenMP.h"
 
 #include <algorithm>
@@ -8,6 +7,21 @@
 #include <stdexcept>
 
 namespace craterkit {
+
+namespace {
+
+// Sizes a spare buffer for a new list without copying its old contents (a growing vector
+// copies them), with room for a list a quarter longer: the buffers are sized by one thread
+// while the others wait, and fresh pages cost a fault each.
+template <class T> void sizeFor(std::vector<T>& v, std::size_t count) {
+  if (v.capacity() < count) {
+    v.clear();
+    v.reserve(count + count / 4);
+  }
+  v.resize(count);
+}
+
+} // namespace
 
 void PairList::build(const double* x, const double* r, std::size_t n, double rmax, double skin) {
   // Cells fit the ordinary particles; a few much larger ones (an impactor) search a wider
@@ -29,7 +43,7 @@ void PairList::build(const double* x, const double* r, std::size_t n, double rma
   std::vector<char> isLarge(large.empty() ? 0 : n, 0);
   for (std::uint32_t b : large)
     isLarge[b] = 1;
-  CellList cells;
+  CellList& cells = cells_; // kept: its arrays keep their memory from build to build
   cells.build(x, n, 2.0 * rsmall + skin);
   // Calls f(j) for every j > i within reach of i.
   auto forEachNeighbour = [&](std::size_t i, auto&& f) {
@@ -116,10 +130,10 @@ void PairList::build(const double* x, const double* r, std::size_t n, double rma
       if (!tooMany) {
         // The new list goes into the spare buffers of the last build, which keep their memory:
         // fresh allocations of this size would cost a page fault per 4 kB at every rebuild.
-        spareFirst_.resize(start[n]);
-        spareSecond_.resize(start[n]);
-        spareActive_.resize(start[n]);
-        spareRow_.resize(start[n]);
+        sizeFor(spareFirst_, start[n]);
+        sizeFor(spareSecond_, start[n]);
+        sizeFor(spareActive_, start[n]);
+        sizeFor(spareRow_, start[n]);
       }
     }
     if (!tooMany)

@@ -13,6 +13,8 @@
 // pass of a build but two prefix sums over the particles runs on all threads.
 #pragma once
 
+#include "common/CellList.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -73,6 +75,7 @@ private:
   std::vector<char> spareActive_;
   std::vector<std::uint32_t> spareRow_;
   std::vector<std::size_t> spareStart_;
+  CellList cells_;
   // Per thread: the second members it found, and how often each particle was one.
   std::vector<std::vector<std::uint32_t>> found_, secondCounts_;
   // Per chunk of kChunk particles: the thread that searched it and where in its buffer.
