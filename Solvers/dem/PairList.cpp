@@ -118,24 +118,7 @@ void PairList::build(const double* x, const double* r, std::size_t n, double rma
       }
     }
 #pragma omp single
-    {
-      for (std::size_t i = 0; i < n; ++i) {
-        start[i + 1] += start[i];
-        std::size_t s = 0;
-        for (std::size_t t = 0; t < team; ++t)
-          s += secondCounts_[t][i];
-        secondStart[i + 1] = secondStart[i] + s;
-      }
-      tooMany = start[n] > std::numeric_limits<std::uint32_t>::max(); // secondRow, table rows
-      if (!tooMany) {
-        // The new list goes into the spare buffers of the last build, which keep their memory:
-        // fresh allocations of this size would cost a page fault per 4 kB at every rebuild.
-        sizeFor(spareFirst_, start[n]);
-        sizeFor(spareSecond_, start[n]);
-        sizeFor(spareActive_, start[n]);
-        sizeFor(spareRow_, start[n]);
-      }
-    }
+    tooMany = !placeChunks(n, team);
     if (!tooMany)
       fillChunks(chunks, n);
   }
@@ -146,6 +129,29 @@ void PairList::build(const double* x, const double* r, std::size_t n, double rma
   active.swap(spareActive_);
   row.swap(spareRow_);
   firstStart.swap(start);
+}
+
+// Serially, after the search: each particle's first pair and its slots as second member
+// (prefix sums of the counts), and the new list's buffers sized. False if the list has more
+// pairs than a row number can hold.
+bool PairList::placeChunks(std::size_t n, std::size_t team) {
+  std::vector<std::size_t>& start = spareStart_;
+  for (std::size_t i = 0; i < n; ++i) {
+    start[i + 1] += start[i];
+    std::size_t s = 0;
+    for (std::size_t t = 0; t < team; ++t)
+      s += secondCounts_[t][i];
+    secondStart[i + 1] = secondStart[i] + s;
+  }
+  if (start[n] > std::numeric_limits<std::uint32_t>::max()) // secondRow and the table rows
+    return false;
+  // The new list goes into the spare buffers of the last build, which keep their memory:
+  // fresh allocations of this size would cost a page fault per 4 kB at every rebuild.
+  sizeFor(spareFirst_, start[n]);
+  sizeFor(spareSecond_, start[n]);
+  sizeFor(spareActive_, start[n]);
+  sizeFor(spareRow_, start[n]);
+  return true;
 }
 
 // Copies each chunk's pairs from its thread's buffer to their place in the new list and

@@ -69,6 +69,7 @@ struct PairList {
 
 private:
   static constexpr std::size_t kChunk = 256; // particles a thread takes at a time
+  bool placeChunks(std::size_t n, std::size_t team);
   void fillChunks(std::size_t chunks, std::size_t n);
   // The previous build's arrays, reused by the next one.
   std::vector<std::uint32_t> spareFirst_, spareSecond_;
