@@ -21,15 +21,30 @@ void ContactTable::resize(std::size_t count) {
   result.resize(kResultWords * count);
 }
 
+namespace {
+
+// Grows v to count items without copying its contents (the rows are written afterwards),
+// with room for a quarter more: the contacts of an impact grow step by step, and a vector that
+// grows copies itself and touches fresh pages while the other threads wait.
+template <class T> void growFresh(std::vector<T>& v, std::size_t count) {
+  if (v.capacity() < count) {
+    v.clear();
+    v.reserve(count + count / 4);
+  }
+  v.resize(count);
+}
+
+} // namespace
+
 void ContactTable::reserveRows(std::size_t count) {
   if (count <= first.size())
     return;
-  first.resize(count);
-  second.resize(count);
-  from.resize(count);
+  growFresh(first, count);
+  growFresh(second, count);
+  growFresh(from, count);
   for (std::vector<double>& h : history)
-    h.resize(count + 1);
-  result.resize(kResultWords * count);
+    growFresh(h, count + 1);
+  growFresh(result, kResultWords * count);
 }
 
 void ContactTable::setRows(std::size_t count) {

@@ -38,8 +38,9 @@ struct ContactTable {
 
   // Sets the number of rows (keeping the memory) and zeroes the history row past the end.
   void resize(std::size_t count);
-  // Room for `count` rows and the zero row, rows unchanged (the arrays only grow), so that
-  // setRows up to it allocates nothing and one thread of a parallel region may call it.
+  // Room for `count` rows and the zero row (the arrays only grow), so that setRows up to it
+  // allocates nothing and one thread of a parallel region may call it. For a table about to
+  // be filled: a growth does not keep the rows' contents.
   void reserveRows(std::size_t count);
   std::size_t room() const { return first.size(); }
   // Sets the number of rows (at most room()) and zeroes the history row past the end.
