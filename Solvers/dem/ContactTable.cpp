@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace craterkit {
 
@@ -20,15 +21,30 @@ void ContactTable::resize(std::size_t count) {
   result.resize(kResultWords * count);
 }
 
+namespace {
+
+// Grows v to count items without copying its contents (the rows are written afterwards),
+// with room for a quarter more: the contacts of an impact grow step by step, and a vector that
+// grows copies itself and touches fresh pages while the other threads wait.
+template <class T> void growFresh(std::vector<T>& v, std::size_t count) {
+  if (v.capacity() < count) {
+    v.clear();
+    v.reserve(count + count / 4);
+  }
+  v.resize(count);
+}
+
+} // namespace
+
 void ContactTable::reserveRows(std::size_t count) {
   if (count <= first.size())
     return;
-  first.resize(count);
-  second.resize(count);
-  from.resize(count);
+  growFresh(first, count);
+  growFresh(second, count);
+  growFresh(from, count);
   for (std::vector<double>& h : history)
-    h.resize(count + 1);
-  result.resize(kResultWords * count);
+    growFresh(h, count + 1);
+  growFresh(result, kResultWords * count);
 }
 
 void ContactTable::setRows(std::size_t count) {
@@ -166,28 +182,41 @@ CK_SIMD_CLONES double evaluateContacts(const Hertz& law, const FrictionConstants
 
 void WallContacts::build(const std::vector<std::uint64_t>& near) {
   const std::size_t n = near.size();
-  std::vector<std::size_t> nextStart(n + 1, 0);
+  const bool carry = !particle.empty();
+  if (carry && start.size() != n + 1)
+    throw std::logic_error("WallContacts::build: the old entries have no per-particle index");
+  std::vector<std::size_t>& nextStart = spareStart_;
+  nextStart.resize(n + 1);
+  nextStart[0] = 0;
   for (std::size_t i = 0; i < n; ++i)
     nextStart[i + 1] = nextStart[i] + static_cast<std::size_t>(__builtin_popcountll(near[i]));
   const std::size_t size = nextStart[n];
-  std::vector<std::uint32_t> nextParticle(size), nextWall(size);
-  for (std::size_t i = 0, c = 0; i < n; ++i)
+  spareParticle_.resize(size);
+  spareWall_.resize(size);
+  spareHistory_.resize(size);
+  spareActive_.resize(size);
+  // Each particle's entries, with the history and flag of those it had (both in wall order).
+#pragma omp parallel for schedule(static) if (n >= kDemParallelMin)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t c = nextStart[i];
+    std::size_t o = carry ? start[i] : 0;
+    const std::size_t oEnd = carry ? start[i + 1] : 0;
     for (std::uint64_t bits = near[i]; bits != 0; bits &= bits - 1, ++c) {
-      nextParticle[c] = static_cast<std::uint32_t>(i);
-      nextWall[c] = static_cast<std::uint32_t>(__builtin_ctzll(bits));
+      const auto w = static_cast<std::uint32_t>(__builtin_ctzll(bits));
+      spareParticle_[c] = static_cast<std::uint32_t>(i);
+      spareWall_[c] = w;
+      while (o < oEnd && wall[o] < w)
+        ++o;
+      const bool same = o < oEnd && wall[o] == w;
+      spareHistory_[c] = same ? history[o] : ContactHistory{};
+      spareActive_[c] = same ? active[o] : 0;
     }
-  // Carry the histories of the entries that stay (both lists sorted by (particle, wall)).
-  std::vector<ContactHistory> nextHistory(size);
-  std::vector<char> nextActive(size, 0);
-  forCommonPairs(particle, wall, nextParticle, nextWall, [&](std::size_t a, std::size_t b) {
-    nextHistory[b] = history[a];
-    nextActive[b] = active[a];
-  });
+  }
   start.swap(nextStart);
-  particle.swap(nextParticle);
-  wall.swap(nextWall);
-  history.swap(nextHistory);
-  active.swap(nextActive);
+  particle.swap(spareParticle_);
+  wall.swap(spareWall_);
+  history.swap(spareHistory_);
+  active.swap(spareActive_);
 }
 
 void WallContacts::removeParticles(const std::vector<char>& remove,
@@ -206,6 +235,13 @@ void WallContacts::removeParticles(const std::vector<char>& remove,
   wall.resize(o);
   history.resize(o);
   active.resize(o);
+  // The next build carries the histories by particle: index the renumbered entries.
+  const std::size_t kept = static_cast<std::size_t>(std::count(remove.begin(), remove.end(), 0));
+  start.assign(kept + 1, 0);
+  for (std::size_t c = 0; c < o; ++c)
+    ++start[particle[c] + 1];
+  for (std::size_t i = 0; i < kept; ++i)
+    start[i + 1] += start[i];
 }
 
 } // namespace craterkit

@@ -38,8 +38,9 @@ struct ContactTable {
 
   // Sets the number of rows (keeping the memory) and zeroes the history row past the end.
   void resize(std::size_t count);
-  // Room for `count` rows and the zero row, rows unchanged (the arrays only grow), so that
-  // setRows up to it allocates nothing and one thread of a parallel region may call it.
+  // Room for `count` rows and the zero row (the arrays only grow), so that setRows up to it
+  // allocates nothing and one thread of a parallel region may call it. For a table about to
+  // be filled: a growth does not keep the rows' contents.
   void reserveRows(std::size_t count);
   std::size_t room() const { return first.size(); }
   // Sets the number of rows (at most room()) and zeroes the history row past the end.
@@ -69,7 +70,7 @@ double evaluateContacts(const Hertz& law, const FrictionConstants& fc, double dt
 
 // The (particle, wall) pairs within reach at the last neighbour-list build, sorted by particle
 // then wall, with their histories stored densely (only the grains at the container touch it).
-// Carried across rebuilds by merging, as the pair list is.
+// Carried across rebuilds by merging each particle's old and new entries, on all threads.
 struct WallContacts {
   std::vector<std::size_t> start; // n + 1: entries start[i] .. start[i+1]-1 are particle i's
   std::vector<std::uint32_t> particle, wall;
@@ -82,6 +83,13 @@ struct WallContacts {
   void build(const std::vector<std::uint64_t>& near);
   // Drops the entries of removed particles and renumbers the rest; needs a build() after.
   void removeParticles(const std::vector<char>& remove, const std::vector<std::uint32_t>& newIndex);
+
+private:
+  // The previous build's arrays, reused by the next one (no fresh pages at every rebuild).
+  std::vector<std::size_t> spareStart_;
+  std::vector<std::uint32_t> spareParticle_, spareWall_;
+  std::vector<ContactHistory> spareHistory_;
+  std::vector<char> spareActive_;
 };
 
 } // namespace craterkit

@@ -171,37 +171,6 @@ void DemSolver::sortSpatially() {
   s.forEachArray(permute);
 }
 
-void DemSolver::buildNeighbourList() {
-  const double* x = state_.position.data();
-  const double* r = state_.radius.data();
-  pairs_.build(x, r, n_, rmax_, skin_);
-  // Walls a particle can reach before the next rebuild (it moves less than skin/2).
-  wallNear_.assign(n_, 0);
-  const std::size_t walls = params_.walls.size();
-#pragma omp parallel for schedule(static) if (n_ >= kDemParallelMin)
-  for (std::size_t i = 0; i < n_; ++i)
-    for (std::size_t w = 0; w < walls; ++w) {
-      const Wall& wall = params_.walls[w];
-      double nv[3], lever;
-      bool near = wall.overlap(&x[3 * i], r[i] + skin_, nv, lever) > 0.0;
-      if (!near && wall.type == Wall::Type::Bowl) { // may cross the rim plane before the next build
-        const double d = std::hypot(x[3 * i] - wall.point[0], x[3 * i + 1] - wall.point[1],
-                                    x[3 * i + 2] - wall.point[2]);
-        near = d > wall.radius - (r[i] + skin_);
-      }
-      if (!near && wall.type == Wall::Type::CylinderAbove) { // may cross the rim plane upwards
-        Wall whole = wall;
-        whole.type = Wall::Type::Cylinder;
-        near = whole.overlap(&x[3 * i], r[i] + skin_, nv, lever) > 0.0;
-      }
-      if (near)
-        wallNear_[i] |= std::uint64_t(1) << w;
-    }
-  wallContacts_.build(wallNear_);
-  refPos_ = state_.position;
-  ++builds_;
-}
-
 // ---------------------------------------------------------------------------------------------
 void DemSolver::computeForces(double kick, bool openNext) {
   prepareForces();

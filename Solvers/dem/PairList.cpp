@@ -1,12 +1,27 @@
 #include "dem/PairList.h"
 
-#include "common/CellList.h"
+#include "common/OpenMP.h"
 
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
 
 namespace craterkit {
+
+namespace {
+
+// Sizes a spare buffer for a new list without copying its old contents (a growing vector
+// copies them), with room for a list a quarter longer: the buffers are sized by one thread
+// while the others wait, and fresh pages cost a fault each.
+template <class T> void sizeFor(std::vector<T>& v, std::size_t count) {
+  if (v.capacity() < count) {
+    v.clear();
+    v.reserve(count + count / 4);
+  }
+  v.resize(count);
+}
+
+} // namespace
 
 void PairList::build(const double* x, const double* r, std::size_t n, double rmax, double skin) {
   // Cells fit the ordinary particles; a few much larger ones (an impactor) search a wider
@@ -28,7 +43,7 @@ void PairList::build(const double* x, const double* r, std::size_t n, double rma
   std::vector<char> isLarge(large.empty() ? 0 : n, 0);
   for (std::uint32_t b : large)
     isLarge[b] = 1;
-  CellList cells;
+  CellList& cells = cells_; // kept: its arrays keep their memory from build to build
   cells.build(x, n, 2.0 * rsmall + skin);
   // Calls f(j) for every j > i within reach of i.
   auto forEachNeighbour = [&](std::size_t i, auto&& f) {
@@ -54,69 +69,116 @@ void PairList::build(const double* x, const double* r, std::size_t n, double rma
       if (b > i)
         test(b);
   };
-  std::vector<std::size_t> count(n + 1, 0);
-#pragma omp parallel for schedule(dynamic, 256) if (n >= kDemParallelMin)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::size_t c = 0;
-    forEachNeighbour(i, [&](std::size_t) { ++c; });
-    count[i + 1] = c;
+  // One search per particle (no counting pass): each thread appends the pairs of the chunks
+  // it takes to its own buffer and counts each particle's second members; then the counts
+  // become the offsets (serially, one pass over the particles) and every chunk is copied to
+  // its place and merged with the old list's pairs of the same first members.
+  const bool parallel = n >= kDemParallelMin;
+#ifdef _OPENMP
+  const std::size_t most =
+      parallel ? static_cast<std::size_t>(std::max(1, omp_get_max_threads())) : 1;
+#else
+  const std::size_t most = 1;
+#endif
+  if (found_.size() < most) {
+    found_.resize(most);
+    secondCounts_.resize(most);
   }
-  std::vector<std::size_t> start(n + 1, 0);
-  for (std::size_t i = 0; i < n; ++i)
-    start[i + 1] = start[i] + count[i + 1];
-  const std::size_t pairs = start[n];
-  if (pairs > std::numeric_limits<std::uint32_t>::max()) // secondPair and the table rows
+  if (!first.empty() && firstStart.size() != n + 1)
+    throw std::logic_error("PairList::build: the old list has no per-particle index");
+  const std::size_t chunks = (n + kChunk - 1) / kChunk;
+  chunkThread_.resize(chunks);
+  chunkOffset_.resize(chunks);
+  std::vector<std::size_t>& start = spareStart_;
+  start.resize(n + 1);
+  start[0] = 0;
+  secondStart.resize(n + 1);
+  secondStart[0] = 0;
+  bool tooMany = false;
+#pragma omp parallel if (parallel)
+  {
+    const std::size_t me = static_cast<std::size_t>(threadNumber());
+    const std::size_t team = static_cast<std::size_t>(threadCount());
+    std::vector<std::uint32_t>& buffer = found_[me];
+    std::vector<std::uint32_t>& seconds = secondCounts_[me];
+    buffer.clear();
+    seconds.assign(n, 0);
+#pragma omp for schedule(dynamic, 1)
+    for (std::size_t c = 0; c < chunks; ++c) {
+      chunkThread_[c] = static_cast<std::uint32_t>(me);
+      chunkOffset_[c] = buffer.size();
+      for (std::size_t i = c * kChunk, e = std::min(n, i + kChunk); i < e; ++i) {
+        const std::size_t b = buffer.size();
+        forEachNeighbour(i, [&](std::size_t j) {
+          buffer.push_back(static_cast<std::uint32_t>(j));
+          ++seconds[j];
+        });
+        std::sort(buffer.begin() + b, buffer.end());
+        start[i + 1] = buffer.size() - b;
+      }
+    }
+#pragma omp single
+    tooMany = !placeChunks(n, team);
+    if (!tooMany)
+      fillChunks(chunks, n);
+  }
+  if (tooMany)
     throw std::runtime_error("the DEM neighbour list has more than 2^32 - 1 pairs");
+  first.swap(spareFirst_);
+  second.swap(spareSecond_);
+  active.swap(spareActive_);
+  row.swap(spareRow_);
+  firstStart.swap(start);
+}
+
+// Serially, after the search: each particle's first pair and its slots as second member
+// (prefix sums of the counts), and the new list's buffers sized. False if the list has more
+// pairs than a row number can hold.
+bool PairList::placeChunks(std::size_t n, std::size_t team) {
+  std::vector<std::size_t>& start = spareStart_;
+  for (std::size_t i = 0; i < n; ++i) {
+    start[i + 1] += start[i];
+    std::size_t s = 0;
+    for (std::size_t t = 0; t < team; ++t)
+      s += secondCounts_[t][i];
+    secondStart[i + 1] = secondStart[i] + s;
+  }
+  if (start[n] > std::numeric_limits<std::uint32_t>::max()) // secondRow and the table rows
+    return false;
   // The new list goes into the spare buffers of the last build, which keep their memory:
   // fresh allocations of this size would cost a page fault per 4 kB at every rebuild.
-  std::vector<std::uint32_t>&newI = spareFirst_, &newJ = spareSecond_;
-  newI.resize(pairs);
-  newJ.resize(pairs);
-#pragma omp parallel if (n >= kDemParallelMin)
-  {
-    std::vector<std::uint32_t> buffer;
-#pragma omp for schedule(dynamic, 256)
-    for (std::size_t i = 0; i < n; ++i) {
-      buffer.clear();
-      forEachNeighbour(i, [&](std::size_t j) { buffer.push_back(static_cast<std::uint32_t>(j)); });
-      std::sort(buffer.begin(), buffer.end());
-      std::copy(buffer.begin(), buffer.end(), newJ.begin() + start[i]);
-      std::fill(newI.begin() + start[i], newI.begin() + start[i + 1],
-                static_cast<std::uint32_t>(i));
+  sizeFor(spareFirst_, start[n]);
+  sizeFor(spareSecond_, start[n]);
+  sizeFor(spareActive_, start[n]);
+  sizeFor(spareRow_, start[n]);
+  return true;
+}
+
+// Copies each chunk's pairs from its thread's buffer to their place in the new list and
+// carries the contact flags and table rows of the pairs that stay (each particle's old and
+// new pairs are both sorted by second member): the histories stay in the table. Every other
+// slot starts apart. On every thread of the build's team.
+void PairList::fillChunks(std::size_t chunks, std::size_t n) {
+  const std::vector<std::size_t>& start = spareStart_;
+  const bool carry = !first.empty();
+#pragma omp for schedule(dynamic, 1)
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const std::uint32_t* from = found_[chunkThread_[c]].data() + chunkOffset_[c];
+    for (std::size_t i = c * kChunk, e = std::min(n, i + kChunk); i < e; ++i) {
+      std::size_t o = carry ? firstStart[i] : 0;
+      const std::size_t oEnd = carry ? firstStart[i + 1] : 0;
+      for (std::size_t k = start[i]; k < start[i + 1]; ++k) {
+        const std::uint32_t j = *from++;
+        spareFirst_[k] = static_cast<std::uint32_t>(i);
+        spareSecond_[k] = j;
+        while (o < oEnd && second[o] < j)
+          ++o;
+        const bool same = o < oEnd && second[o] == j;
+        spareActive_[k] = same ? active[o] : 0;
+        spareRow_[k] = same ? row[o] : 0;
+      }
     }
   }
-  // Carry the contact flags and table rows of pairs that stay in the list (both lists sorted
-  // by (i, j)): the histories stay in the table. Every other slot starts apart. Each new slot
-  // is written once.
-  std::vector<char>& newActive = spareActive_;
-  std::vector<std::uint32_t>& newRow = spareRow_;
-  newActive.resize(pairs);
-  newRow.resize(pairs);
-  std::size_t b = 0;
-  forCommonPairs(first, second, newI, newJ, [&](std::size_t a, std::size_t same) {
-    for (; b < same; ++b)
-      newActive[b] = 0;
-    newActive[b] = active[a];
-    newRow[b] = row[a];
-    ++b;
-  });
-  for (; b < pairs; ++b)
-    newActive[b] = 0;
-  first.swap(newI);
-  second.swap(newJ);
-  active.swap(newActive);
-  row.swap(newRow);
-  firstStart.swap(start);
-  // Pairs in which each particle is the second member, in increasing order of the first.
-  secondStart.assign(n + 1, 0);
-  for (std::size_t k = 0; k < pairs; ++k)
-    ++secondStart[second[k] + 1];
-  for (std::size_t i = 0; i < n; ++i)
-    secondStart[i + 1] += secondStart[i];
-  secondPair.resize(pairs);
-  std::vector<std::size_t> fill(secondStart.begin(), secondStart.end() - 1);
-  for (std::size_t k = 0; k < pairs; ++k)
-    secondPair[fill[second[k]]++] = static_cast<std::uint32_t>(k);
 }
 
 void PairList::removeParticles(const std::vector<char>& remove,
@@ -136,6 +198,13 @@ void PairList::removeParticles(const std::vector<char>& remove,
   second.resize(o);
   active.resize(o);
   row.resize(o);
+  // The next build carries the flags by first member: index the renumbered list.
+  const std::size_t kept = static_cast<std::size_t>(std::count(remove.begin(), remove.end(), 0));
+  firstStart.assign(kept + 1, 0);
+  for (std::size_t k = 0; k < o; ++k)
+    ++firstStart[first[k] + 1];
+  for (std::size_t i = 0; i < kept; ++i)
+    firstStart[i + 1] += firstStart[i];
 }
 
 } // namespace craterkit

@@ -5,12 +5,15 @@
 // holds only its particles, a contact flag and, for a pair in contact, its row in the contact
 // table (dem/ContactTable.h), which keeps the histories and results of the few pairs in
 // contact: the pass that tests every listed pair reads 9 bytes a pair. The flags and rows are
-// carried across rebuilds by merging the old and new sorted lists, so a rebuild never resets
-// a spring. Each particle finds its pairs through firstStart (pairs where it is i, in order of
-// j) and secondStart/secondPair (pairs where it is j, in order of i), so that the force gather
-// sums every particle's pairs in index order with no atomics: bit-identical for any thread
-// count.
+// carried across rebuilds by merging each particle's old and new pairs (both sorted), so a
+// rebuild never resets a spring. Each particle finds its pairs through firstStart (pairs where
+// it is i, in order of j); secondStart counts the pairs where it is j and gives it slots for
+// its rows as second member (dem/ParticleContacts.h), so that the force gather sums every
+// particle's pairs in index order with no atomics: bit-identical for any thread count. Every
+// pass of a build but two prefix sums over the particles runs on all threads.
 #pragma once
+
+#include "common/CellList.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -49,9 +52,8 @@ struct PairList {
   std::vector<std::uint32_t> first, second; // the pair's particles, first < second
   std::vector<char> active;                 // in contact at the last force evaluation
   std::vector<std::uint32_t> row;           // of an active pair: its row in the contact table
-  std::vector<std::size_t> firstStart;   // n + 1: pairs firstStart[i] .. firstStart[i+1]-1 have i
-  std::vector<std::size_t> secondStart;  // n + 1: into secondPair
-  std::vector<std::uint32_t> secondPair; // pairs by second member, in increasing order of first
+  std::vector<std::size_t> firstStart;  // n + 1: pairs firstStart[i] .. firstStart[i+1]-1 have i
+  std::vector<std::size_t> secondStart; // n + 1: prefix sums of the pairs where i is second
 
   std::size_t size() const { return first.size(); }
 
@@ -60,16 +62,26 @@ struct PairList {
   void build(const double* x, const double* r, std::size_t n, double rmax, double skin);
 
   // Drops the pairs of removed particles and renumbers the rest (newIndex is increasing,
-  // so the list stays sorted) and their table rows (newRow). The per-particle indices need a
-  // build() afterwards.
+  // so the list stays sorted) and their table rows (newRow). secondStart needs a build()
+  // afterwards.
   void removeParticles(const std::vector<char>& remove, const std::vector<std::uint32_t>& newIndex,
                        const std::vector<std::uint32_t>& newRow);
 
 private:
+  static constexpr std::size_t kChunk = 256; // particles a thread takes at a time
+  bool placeChunks(std::size_t n, std::size_t team);
+  void fillChunks(std::size_t chunks, std::size_t n);
   // The previous build's arrays, reused by the next one.
   std::vector<std::uint32_t> spareFirst_, spareSecond_;
   std::vector<char> spareActive_;
   std::vector<std::uint32_t> spareRow_;
+  std::vector<std::size_t> spareStart_;
+  CellList cells_;
+  // Per thread: the second members it found, and how often each particle was one.
+  std::vector<std::vector<std::uint32_t>> found_, secondCounts_;
+  // Per chunk of kChunk particles: the thread that searched it and where in its buffer.
+  std::vector<std::uint32_t> chunkThread_;
+  std::vector<std::size_t> chunkOffset_;
 };
 
 } // namespace craterkit
