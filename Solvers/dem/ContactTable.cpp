@@ -1,5 +1,6 @@
 #include "dem/ContactTable.h"
 
+#include "common/GrowFresh.h"
 #include "dem/PairList.h"
 #include "sph/SimdClones.h"
 
@@ -20,21 +21,6 @@ void ContactTable::resize(std::size_t count) {
   }
   result.resize(kResultWords * count);
 }
-
-namespace {
-
-// Grows v to count items without copying its contents (the rows are written afterwards),
-// with room for a quarter more: the contacts of an impact grow step by step, and a vector that
-// grows copies itself and touches fresh pages while the other threads wait.
-template <class T> void growFresh(std::vector<T>& v, std::size_t count) {
-  if (v.capacity() < count) {
-    v.clear();
-    v.reserve(count + count / 4);
-  }
-  v.resize(count);
-}
-
-} // namespace
 
 void ContactTable::reserveRows(std::size_t count) {
   if (count <= first.size())

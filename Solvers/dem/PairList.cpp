@@ -1,5 +1,6 @@
 #include "dem/PairList.h"
 
+#include "common/GrowFresh.h"
 #include "common/OpenMP.h"
 
 #include <algorithm>
@@ -7,21 +8,6 @@
 #include <stdexcept>
 
 namespace craterkit {
-
-namespace {
-
-// Sizes a spare buffer for a new list without copying its old contents (a growing vector
-// copies them), with room for a list a quarter longer: the buffers are sized by one thread
-// while the others wait, and fresh pages cost a fault each.
-template <class T> void sizeFor(std::vector<T>& v, std::size_t count) {
-  if (v.capacity() < count) {
-    v.clear();
-    v.reserve(count + count / 4);
-  }
-  v.resize(count);
-}
-
-} // namespace
 
 void PairList::build(const double* x, const double* r, std::size_t n, double rmax, double skin) {
   // Cells fit the ordinary particles; a few much larger ones (an impactor) search a wider
@@ -147,10 +133,10 @@ bool PairList::placeChunks(std::size_t n, std::size_t team) {
     return false;
   // The new list goes into the spare buffers of the last build, which keep their memory:
   // fresh allocations of this size would cost a page fault per 4 kB at every rebuild.
-  sizeFor(spareFirst_, start[n]);
-  sizeFor(spareSecond_, start[n]);
-  sizeFor(spareActive_, start[n]);
-  sizeFor(spareRow_, start[n]);
+  growFresh(spareFirst_, start[n]);
+  growFresh(spareSecond_, start[n]);
+  growFresh(spareActive_, start[n]);
+  growFresh(spareRow_, start[n]);
   return true;
 }
 
