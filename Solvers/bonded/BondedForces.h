@@ -15,6 +15,8 @@
 
 #include "bonded/WatsonSteinhauser2017.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -57,13 +59,36 @@ bool avx512Available();
 // avx512Available().
 long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1);
 
+// The velocities after a kick-drift, for the lists' rebuild trigger (BondedListTrigger): the
+// largest squared speed and each axis's extremes.
+struct VelocitySpread {
+  double speed2 = 0.0;
+  double lo[3] = {kNoBond, kNoBond, kNoBond}, hi[3] = {-kNoBond, -kNoBond, -kNoBond};
+  void add(double vx, double vy, double vz) {
+    speed2 = std::max(speed2, vx * vx + vy * vy + vz * vz);
+    lo[0] = std::min(lo[0], vx), lo[1] = std::min(lo[1], vy), lo[2] = std::min(lo[2], vz);
+    hi[0] = std::max(hi[0], vx), hi[1] = std::max(hi[1], vy), hi[2] = std::max(hi[2], vz);
+  }
+  void merge(const VelocitySpread& o) {
+    speed2 = std::max(speed2, o.speed2);
+    for (int k = 0; k < 3; ++k)
+      lo[k] = std::min(lo[k], o.lo[k]), hi[k] = std::max(hi[k], o.hi[k]);
+  }
+  // A bound on any two particles' relative speed: |v_i − v_j| is at most 2 max|v|, and along each
+  // axis at most max v_k − min v_k (the bound a common velocity does not change).
+  double relativeSpeed() const {
+    const double dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    return std::min(2.0 * std::sqrt(speed2), std::sqrt(dx * dx + dy * dy + dz * dz));
+  }
+};
+
 // The kick-drift of velocity Verlet over particles [i0, i1) where the force pass ran without its
 // half kick (where avx512Available()): first that deferred second half kick of the previous step
 // (if `pending`), v = fma(h, f, v), the operation blockForcesAvx512 does; then this step's first
 // half kick v += h f and the drift x += Δt v, each product and sum rounded on its own as in the
 // solver's generic kick-drift. The bits are those of the force pass's kick followed by the
-// generic kick-drift, and the force pass no longer streams v and m. Returns the largest squared
-// speed after the kicks.
+// generic kick-drift, and the force pass no longer streams v and m. Adds the velocities after
+// the kicks to `spread`.
 struct DriftPass {
   double* x;
   double* v;
@@ -72,7 +97,7 @@ struct DriftPass {
   double dt, halfStep;
   bool pending;
 };
-double driftAvx512(const DriftPass& p, std::size_t i0, std::size_t i1);
+void driftAvx512(const DriftPass& p, std::size_t i0, std::size_t i1, VelocitySpread& spread);
 // The rebuild's candidate test over a copy of the positions in the cell list's order (x, y, z
 // apart, with the particles' indices): which of entries [begin, end) lie closer than the reach to
 // `xi`, other than the particle `self`. Their indices are written to `out` (which must have room

@@ -116,10 +116,10 @@ long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1) {
 
 namespace {
 
-// One particle of the kick-drift; returns its squared speed.
-inline double driftOne(const DriftPass& p, std::size_t i) {
+// One particle of the kick-drift, its velocity after the kicks added to `spread`.
+inline void driftOne(const DriftPass& p, std::size_t i, VelocitySpread& spread) {
   const double h = p.halfStep / p.m[i];
-  double v2 = 0.0;
+  double w[3];
   for (int k = 0; k < 3; ++k) {
     const std::size_t c = 3 * i + k;
     double v = p.v[c];
@@ -128,18 +128,18 @@ inline double driftOne(const DriftPass& p, std::size_t i) {
     v += h * p.f[c]; // not fused: this file is compiled with -ffp-contract=off
     p.v[c] = v;
     p.x[c] += p.dt * v;
-    v2 += v * v;
+    w[k] = v;
   }
-  return v2;
+  spread.add(w[0], w[1], w[2]);
 }
 
 } // namespace
 
-double driftAvx512(const DriftPass& p, std::size_t i0, std::size_t i1) {
-  double worst = 0.0;
+void driftAvx512(const DriftPass& p, std::size_t i0, std::size_t i1, VelocitySpread& spread) {
+  VelocitySpread mine = spread; // a local: the stores to x and v may not alias it (registers)
   for (std::size_t i = i0; i < i1; ++i)
-    worst = std::max(worst, driftOne(p, i));
-  return worst;
+    driftOne(p, i, mine);
+  spread = mine;
 }
 
 std::size_t nearCandidatesAvx512(const NearScan& s, std::size_t begin, std::size_t end,
@@ -181,7 +181,7 @@ void halfKickAvx512(const DriftPass& p, std::size_t i0, std::size_t i1) {
 
 bool avx512Available() { return false; }
 long blockForcesAvx512(const BlockPass&, std::size_t, std::size_t) { return 0; }
-double driftAvx512(const DriftPass&, std::size_t, std::size_t) { return 0.0; }
+void driftAvx512(const DriftPass&, std::size_t, std::size_t, VelocitySpread&) {}
 void halfKickAvx512(const DriftPass&, std::size_t, std::size_t) {}
 std::size_t nearCandidatesAvx512(const NearScan&, std::size_t, std::size_t, const double[3],
                                  std::uint32_t, std::uint32_t*) {

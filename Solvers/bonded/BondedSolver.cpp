@@ -225,7 +225,7 @@ void BondedSolver::buildPairs() {
       }
   }
   blockBreaks_.assign(blocks, 0);
-  travel_ = 0.0;
+  trigger_.reset(x, n, sys_.law.rEq(), reach);
   ++builds_;
 }
 
@@ -299,56 +299,59 @@ void BondedSolver::bookBreaks() {
   }
 }
 
-// Velocity Verlet: half kick and drift (with the largest speed), the
-// lists rebuilt if a particle may have crossed half the skin, then the forces and, in the same
-// pass or deferred to the next kick-drift, the second half kick.
+// Velocity Verlet: half kick and drift (with the velocities' spread), the lists rebuilt if a
+// pair closer than r_eq may be missing from them, then the forces and, in the same pass or
+// deferred to the next kick-drift, the second half kick.
 void BondedSolver::step() {
   stepDeferred();
   settle();
 }
 
 void BondedSolver::stepDeferred() {
-  // No particle has moved farther since the build than the sum over the steps of Δt times the
-  // largest speed: the lists hold until that passes half the skin (no positions at the build to
-  // stream every step).
-  travel_ += dt_ * std::sqrt(kickDrift());
-  if (travel_ > 0.5 * params_.skin * sys_.law.sigma)
+  // The trigger bounds the particles' motion relative to each other, region by region
+  // (BondedListTrigger): the cloud's fastest fragments no longer set every particle's bound.
+  if (trigger_.expired(sys_.positions.data(), dt_ * kickDrift().relativeSpeed()))
     buildPairs();
   computeForces(true);
   ++step_;
 }
 
-// The (pending and) first half kick and the drift; returns the largest squared speed.
-double BondedSolver::kickDrift() {
+// The (pending and) first half kick and the drift; returns the velocities' spread after it.
+bondedpass::VelocitySpread BondedSolver::kickDrift() {
   const long n = static_cast<long>(sys_.size());
   double* x = sys_.positions.data();
   double* v = sys_.velocities.data();
   const double* m = sys_.masses.data();
   const double dt = dt_;
-  double worst = 0.0;
-  if (kickPending_) {
-    const bondedpass::DriftPass p{x, v, force_.data(), m, dt, 0.5 * dt, true};
-    constexpr long kChunk = 2048;
-#pragma omp parallel for schedule(dynamic) reduction(max : worst)
-    for (long c = 0; c < (n + kChunk - 1) / kChunk; ++c)
-      worst = std::max(
-          worst, bondedpass::driftAvx512(p, static_cast<std::size_t>(c * kChunk),
-                                         static_cast<std::size_t>(std::min(n, (c + 1) * kChunk))));
-    kickPending_ = false;
-    return worst;
-  }
-#pragma omp parallel for schedule(dynamic, 2048) reduction(max : worst)
-  for (long i = 0; i < n; ++i) {
-    const double h = 0.5 * dt / m[i];
-    double v2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      v[3 * i + k] += h * force_[3 * i + k];
-      x[3 * i + k] += dt * v[3 * i + k];
-      v2 += v[3 * i + k] * v[3 * i + k];
+  const bool pending = kickPending_;
+  const bondedpass::DriftPass p{x, v, force_.data(), m, dt, 0.5 * dt, true};
+  bondedpass::VelocitySpread spread;
+  constexpr long kChunk = 2048;
+#pragma omp parallel
+  {
+    bondedpass::VelocitySpread mine;
+#pragma omp for schedule(dynamic) nowait
+    for (long c = 0; c < (n + kChunk - 1) / kChunk; ++c) {
+      const long end = std::min(n, (c + 1) * kChunk);
+      if (pending) {
+        bondedpass::driftAvx512(p, static_cast<std::size_t>(c * kChunk),
+                                static_cast<std::size_t>(end), mine);
+        continue;
+      }
+      for (long i = c * kChunk; i < end; ++i) {
+        const double h = 0.5 * dt / m[i];
+        for (int k = 0; k < 3; ++k) {
+          v[3 * i + k] += h * force_[3 * i + k];
+          x[3 * i + k] += dt * v[3 * i + k];
+        }
+        mine.add(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+      }
     }
-    worst = std::max(worst, v2);
+#pragma omp critical
+    spread.merge(mine);
   }
-  return worst;
+  kickPending_ = false;
+  return spread;
 }
 
 void BondedSolver::settle() {

@@ -8,9 +8,11 @@
 // Every pair of particles is handled in one fused pass per particle over its pair list: the
 // particles it may touch before the next rebuild (a full Verlet list: all particles within
 // r_eq + skin, found in the 27 cells of the reach around its own (the common CellList's sparse
-// layout, whose cells keep their size however wide the debris cloud), rebuilt when a particle may
-// have moved more than half the skin: Δt times the largest speed, summed over the steps since the
-// build) together with its bonded partners however far, each entry carrying the rest length of its
+// layout, whose cells keep their size however wide the debris cloud), rebuilt when two particles
+// may have closed in on each other by more than the skin, bounded region by region on their
+// measured displacements (BondedListTrigger), so that the fastest fragments do not set the bound
+// of particles that move with their neighbours) together with its bonded partners however far,
+// each entry carrying the rest length of its
 // intact bond (or none). One entry gives the pair's repulsion (closer than r_eq) and spring
 // (stretched bond) at once (ws2017::pairForceOverR), and each pair is computed twice, once from
 // each side, with exactly opposite results. The lists are stored in blocks of eight particles,
@@ -35,6 +37,8 @@
 #pragma once
 
 #include "bonded/BondedBody.h"
+#include "bonded/BondedForces.h"
+#include "bonded/BondedListTrigger.h"
 #include "common/CellList.h"
 #include "common/Progress.h"
 
@@ -80,6 +84,8 @@ public:
   std::size_t brokenBonds() const { return broken_; }
   // Pair-list builds since construction or restore (the restore's own build included).
   std::size_t listBuilds() const { return builds_; }
+  // Measurements of the particles' relative motion since construction (BondedListTrigger).
+  std::size_t listMeasurements() const { return trigger_.measurements(); }
   const BondedSystem& system() const { return sys_; }
   const std::vector<std::uint8_t>& bondBroken() const { return bondBroken_; }
   const std::vector<double>& forces() const { return force_; }
@@ -97,7 +103,7 @@ private:
   // One step; where the AVX-512 passes run, the second half kick is left pending (kickPending_)
   // and done by the next step's kick-drift, so that the force pass does not stream v and m.
   void stepDeferred();
-  double kickDrift();
+  bondedpass::VelocitySpread kickDrift();
   void settle(); // the pending half kick, if any: every public call ends with none pending
 
   BondedSystem sys_;
@@ -108,7 +114,7 @@ private:
   std::size_t builds_ = 0;
   double dissipated_ = 0.0;
   std::vector<double> force_;
-  double travel_ = 0.0; // Δt times the largest speed, summed over the steps since the build
+  BondedListTrigger trigger_; // when the lists must be rebuilt
   bool kickPending_ = false;
   std::vector<std::uint8_t> bondBroken_; // 0 intact, 1 broken
   std::vector<std::size_t> bondStart_;   // each particle's bonds: bondsOf_[bondStart_[i]...]

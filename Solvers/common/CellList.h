@@ -85,6 +85,21 @@ public:
         visit(std::size_t(r[k]), std::size_t(r[k + 1]));
   }
 
+  // After buildSparse only: the occupied cells (numbered in the order of their points in
+  // sorted()), each point's cell, and the occupied cells among the 27 around cell c as ranges
+  // [first, last) of those numbers, one per row of three cells along x: for callers that keep a
+  // value per cell. Two points whose cells are not neighbours lie at least the requested cell
+  // size apart on some axis (see above).
+  std::size_t occupiedCells() const { return sparse_ ? cellKey_.size() - 1 : 0; }
+  std::size_t cellOf(std::size_t i) const { return pointCell_[i]; } // point i's occupied cell
+  template <class Visit> void forEachNeighbourCellRange(std::size_t c, Visit&& visit) const {
+    const std::uint32_t* r = rows_.data() + kRowEnds * c;
+    for (std::size_t k = 0; k < kRowEnds; k += 2)
+      if (r[k] != r[k + 1])
+        visit(std::size_t(pointCell_[sorted_[r[k]]]),
+              std::size_t(pointCell_[sorted_[r[k + 1] - 1]]) + 1);
+  }
+
   // The points' indices in cell order.
   const std::vector<std::size_t>& sorted() const { return sorted_; }
   double cellSize() const { return cellSize_; }

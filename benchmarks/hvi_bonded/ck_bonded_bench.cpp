@@ -99,6 +99,7 @@ int checkpointMode(const std::string& mode, int argc, char** argv) {
   BondedSolver solver = mode == "checkpoint" ? BondedSolver(headline(std::atof(argv[3])))
                                              : BondedSolver::readCheckpoint(path);
   const std::size_t brokenBefore = solver.brokenBonds(), buildsBefore = solver.listBuilds();
+  const std::size_t measuredBefore = solver.listMeasurements();
   const auto start = std::chrono::steady_clock::now();
   solver.advance(static_cast<std::size_t>(steps));
   const auto end = std::chrono::steady_clock::now();
@@ -109,13 +110,14 @@ int checkpointMode(const std::string& mode, int argc, char** argv) {
   std::printf("{\"mode\": \"%s\", \"particles\": %zu, \"step\": %llu, \"time\": %.6g, "
               "\"steps\": %ld, \"threads\": %d, \"setup_seconds\": %.6g, "
               "\"loop_seconds\": %.6g, \"steps_per_s\": %.6g, \"particle_steps_per_s\": %.6g, "
-              "\"list_builds\": %zu, \"broken_bonds\": %zu, \"broken_timed\": %zu, "
+              "\"list_builds\": %zu, \"list_measurements\": %zu, \"broken_bonds\": %zu, "
+              "\"broken_timed\": %zu, "
               "\"state_hash\": \"%016llx\"}\n",
               mode.c_str(), n, static_cast<unsigned long long>(solver.stepCount()), solver.time(),
               steps, omp_get_max_threads(), std::chrono::duration<double>(start - t0).count(),
               seconds, steps / seconds, static_cast<double>(n) * steps / seconds,
-              solver.listBuilds() - buildsBefore, solver.brokenBonds(),
-              solver.brokenBonds() - brokenBefore,
+              solver.listBuilds() - buildsBefore, solver.listMeasurements() - measuredBefore,
+              solver.brokenBonds(), solver.brokenBonds() - brokenBefore,
               static_cast<unsigned long long>(stateHash(solver.system())));
   return 0;
 }

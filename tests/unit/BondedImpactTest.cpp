@@ -7,6 +7,7 @@
 #include "bonded/BondedSolver.h"
 #include "bonded/WatsonSteinhauser2017.h"
 #include "common/Error.h"
+#include "common/Random.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -115,6 +116,19 @@ double worstForceDifference(const BondedSolver& solver) {
       worst = std::max(worst, std::abs(solver.forces()[3 * i + k] - f[3 * i + k]) / allowed);
     }
   return worst;
+}
+
+// Pairs closer than r (brute force).
+std::size_t closePairs(const BondedSystem& s, double r) {
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (std::size_t j = i + 1; j < s.size(); ++j) {
+      double r2 = 0.0;
+      for (int k = 0; k < 3; ++k)
+        r2 += std::pow(s.positions[3 * i + k] - s.positions[3 * j + k], 2);
+      count += r2 < r * r;
+    }
+  return count;
 }
 
 } // namespace
@@ -348,6 +362,118 @@ TEST(BondedImpact, ForcesEqualAllPairsSumOnASpreadOutCloud) {
   EXPECT_LT(worst[0], 1.0);
   EXPECT_LT(worst[1], 1.0);
   EXPECT_TRUE(sameBits(ends[0], ends[1]));
+}
+
+// The lists' rebuild trigger bounds the particles' motion relative to each other
+// (BondedListTrigger): a gas of 512 free particles (no bonds) from a cubic lattice at r_eq, with
+// velocities spread uniformly over ±s on each axis, so that neighbours collide (closer than r_eq)
+// all through the run, once at rest and once with a common velocity of 40 s. Every step the
+// forces must equal the all-pairs sum: a pair closer than r_eq missing from the lists (a trigger
+// too lax) would be a whole pair force missing, far above the rounding allowed. The common
+// velocity must not add list builds: the moving gas rebuilds as often as the gas at rest (the
+// two differ by rounding: within two builds), and at most a tenth as often as the rule on the
+// largest speed it replaces would (a rebuild whenever 2 Δt Σ max|v| passes the skin, counted
+// here on the velocities after each step).
+TEST(BondedImpact, ListTriggerFollowsRelativeMotionOnly) {
+  const double a = 1e-3;
+  BondedSystem gas = buildBondedBox(8, 8, 8, a, 2700.0, headlineSizing());
+  gas.bonds.clear();
+  const double dt = BondedSolver(gas).timeStep();
+  constexpr int kSteps = 1200;
+  const double s = 0.5 * a / (kSteps * dt); // each particle moves up to ~a/2 per axis in the run
+  Random random(29);
+  for (double& v : gas.velocities)
+    v = random.uniform(-s, s);
+  const double skin = BondedSolverParams{}.skin * gas.law.sigma;
+  std::vector<std::size_t> builds, oldRule;
+  for (double common : {0.0, 40.0 * s}) {
+    BondedSystem start = gas;
+    for (std::size_t i = 0; i < start.size(); ++i)
+      start.velocities[3 * i] += common, start.velocities[3 * i + 1] -= 0.6 * common,
+          start.velocities[3 * i + 2] += 0.3 * common;
+    BondedSolver solver(std::move(start));
+    double worst = 0.0, travel = 0.0;
+    std::size_t old = 1, closest = 0;
+    for (int step = 1; step <= kSteps; ++step) {
+      solver.step();
+      worst = std::max(worst, worstForceDifference(solver));
+      const std::vector<double>& v = solver.system().velocities;
+      double v2 = 0.0;
+      for (std::size_t i = 0; i < solver.system().size(); ++i)
+        v2 = std::max(v2, v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] +
+                              v[3 * i + 2] * v[3 * i + 2]);
+      travel += dt * std::sqrt(v2);
+      if (travel > 0.5 * skin)
+        travel = 0.0, ++old;
+      if (step == kSteps)
+        closest = closePairs(solver.system(), gas.law.rEq());
+    }
+    builds.push_back(solver.listBuilds());
+    oldRule.push_back(old);
+    std::printf("[bonded] gas, common velocity %.0f s: %zu list builds (%zu measurements), %zu "
+                "by the largest-speed rule; %zu pairs closer than r_eq at the end; worst "
+                "difference %.2f of the rounding allowed\n",
+                common / s, solver.listBuilds(), solver.listMeasurements(), old, closest, worst);
+    EXPECT_LT(worst, 1.0);
+    EXPECT_GT(closest, 0u);
+  }
+  EXPECT_LE(builds[1], builds[0] + 2);
+  EXPECT_GE(builds[1] + 2, builds[0]);
+  EXPECT_LE(10 * builds[1], oldRule[1]);
+}
+
+// The trigger's bound for particles of regions that are not neighbours (at least 4 reaches apart
+// at the build): two bonded blocks, each moving as a whole, fly at each other from 8 reaches
+// apart and collide. Within each block nothing moves relative to its neighbours; only the bound
+// on the whole cloud's displacements can see the blocks close in, and every step the forces must
+// equal the all-pairs sum (the repulsion across the gap from the first contact on).
+TEST(BondedImpact, ListTriggerSeesDistantBodiesCloseIn) {
+  const double a = 1e-3;
+  BondedSystem s = buildBondedBox(4, 4, 4, a, 2700.0, headlineSizing());
+  const double reach = s.law.rEq() + BondedSolverParams{}.skin * s.law.sigma;
+  const std::size_t half = s.size();
+  BondedSystem other = s;
+  const double offset = 3.0 * a + 8.0 * reach;
+  const double dt = BondedSolver(s).timeStep();
+  // Contact after ~1200 steps; each block moves ~1.3 times as far a step (in σ) as the headline
+  // projectile does.
+  constexpr int kSteps = 1600;
+  const double speed = (offset - 3.0 * a) / (2.0 * 1200.0 * dt);
+  for (std::size_t i = 0; i < half; ++i)
+    s.velocities[3 * i] = speed;
+  for (std::size_t i = 0; i < half; ++i) {
+    s.positions.insert(s.positions.end(),
+                       {other.positions[3 * i] + offset, other.positions[3 * i + 1] + 0.3 * a,
+                        other.positions[3 * i + 2] - 0.2 * a});
+    s.velocities.insert(s.velocities.end(), {-speed, 0.0, 0.0});
+    s.masses.push_back(other.masses[i]);
+    s.body.push_back(1);
+  }
+  for (BondedBond b : other.bonds) {
+    b.i += static_cast<std::uint32_t>(half), b.j += static_cast<std::uint32_t>(half);
+    s.bonds.push_back(b);
+  }
+  BondedSolver solver(std::move(s));
+  double worst = 0.0;
+  std::size_t touching = 0;
+  for (int step = 1; step <= kSteps; ++step) {
+    solver.step();
+    worst = std::max(worst, worstForceDifference(solver));
+    const BondedSystem& now = solver.system();
+    for (std::size_t i = 0; i < half; ++i)
+      for (std::size_t j = half; j < now.size(); ++j) {
+        double r2 = 0.0;
+        for (int k = 0; k < 3; ++k)
+          r2 += std::pow(now.positions[3 * i + k] - now.positions[3 * j + k], 2);
+        touching += r2 < now.law.rEq() * now.law.rEq();
+      }
+  }
+  std::printf("[bonded] two blocks closing in at %.0f m/s: %zu list builds (%zu measurements), "
+              "%zu pair-steps across the gap closer than r_eq, worst difference %.2f of the "
+              "rounding allowed\n",
+              2.0 * speed, solver.listBuilds(), solver.listMeasurements(), touching, worst);
+  EXPECT_GT(touching, 0u);
+  EXPECT_LT(worst, 1.0);
 }
 
 // Sphere on plate at ~2500 particles, three speeds, 5 µs. Fragmentation must grow with v0
