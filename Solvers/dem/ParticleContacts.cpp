@@ -12,11 +12,10 @@ void ParticleContacts::resize(std::size_t n, std::size_t pairs) {
 }
 
 void ParticleContacts::index(const ContactTable& table, const std::vector<std::size_t>& secondStart,
-                             std::size_t lo, std::size_t hi) {
+                             std::size_t lo, std::size_t hi, std::size_t rows) {
   std::fill(firstCount.begin() + lo, firstCount.begin() + hi, 0u);
   std::fill(secondCount.begin() + lo, secondCount.begin() + hi, 0u);
   const std::uint32_t *first = table.first.data(), *second = table.second.data();
-  const std::size_t rows = table.rows;
   // The table is sorted by first member: the range's first members are one block of rows.
   const std::size_t begin = static_cast<std::size_t>(
       std::lower_bound(first, first + rows, static_cast<std::uint32_t>(lo)) - first);

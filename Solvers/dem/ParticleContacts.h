@@ -27,8 +27,10 @@ struct ParticleContacts {
   void resize(std::size_t n, std::size_t pairs);
   // Indexes the rows of `table` for the particles [lo, hi): called by every thread of a team
   // for its own range (the one it then gathers), the ranges together covering all particles.
+  // Only the rows below `rows` are read: it must include every row whose first member is below
+  // hi (the table's rows, or those written so far in a step whose threads write in order).
   void index(const ContactTable& table, const std::vector<std::size_t>& secondStart, std::size_t lo,
-             std::size_t hi);
+             std::size_t hi, std::size_t rows);
 };
 
 } // namespace craterkit

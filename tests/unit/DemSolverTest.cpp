@@ -386,7 +386,7 @@ TEST(DemNeighbours, ParticleContactsListEveryRowInListOrder) {
     ParticleContacts pc;
     pc.resize(n, listed.size());
     for (std::size_t t = 0; t < threads; ++t)
-      pc.index(table, secondStart, cut[t], cut[t + 1]);
+      pc.index(table, secondStart, cut[t], cut[t + 1], table.rows);
     for (std::size_t i = 0; i < n; ++i) {
       std::vector<std::size_t> firstWant, secondWant, firstGot, secondGot;
       for (std::size_t c = 0; c < rows.size(); ++c) {
