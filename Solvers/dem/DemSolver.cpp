@@ -196,7 +196,8 @@ void DemSolver::prepareForces() {
   touchingCount_.assign(kPad * most, 0);
   particleShares_.resize(most);
   chain_.resize(most);
-  chainStage_ += 2;
+  chainStage_ += 3;
+  shared_.resize(n_);
   contactsOf_.resize(n_, pairs_.size());
   tables_[1 - current_].reserveRows(pairs_.size());
   worstOverlap_ = 0.0;
@@ -218,7 +219,8 @@ void DemSolver::forcePhases(double kick, bool openNext) {
 // The pairs in contact now, in the order of the list, become the rows of the next table:
 // each thread tests the pairs whose first member is in its range [lo, hi) of particles, a block
 // of the list (dem/TouchingPairs.h), then writes its rows after those of the threads before it
-// once these have counted theirs. Returns the seconds this thread worked (its wait left out).
+// once these have counted theirs, marking the second members beyond its range as shared.
+// Returns the seconds this thread worked (its wait left out).
 double DemSolver::collectContacts(std::size_t lo, std::size_t hi, std::size_t* rowBegin,
                                   std::size_t* rowEnd) {
   const double start = seconds();
@@ -255,18 +257,23 @@ double DemSolver::collectContacts(std::size_t lo, std::size_t hi, std::size_t* r
     now.from[c] = active[k] ? row[k] : static_cast<std::uint32_t>(before.rows);
     active[k] = 1;
     row[k] = static_cast<std::uint32_t>(c++);
+    if (second[k] >= hi) // a later thread's particle (two threads may mark the same one)
+      __atomic_store_n(&shared_[second[k]], chainStage_, __ATOMIC_RELAXED);
   }
+  chain_.post(me, chainStage_ + 2);
   return searched + (seconds() - filling);
 }
 
 // Forces and torques at the current positions; with kick > 0 the closing half-kick of the
 // step (v += kick a) is applied in the gather, while the accelerations are in registers.
-// Each thread evaluates the rows it wrote, then indexes and sums the particles of its range
-// once the threads before it have evaluated theirs: their rows hold its particles' second-member
-// contacts, and their search and law read its particles, which the gather drifts. The threads
-// after it read nothing it writes (their pairs' members all come after its range). The shares
-// follow the times worked, the waits left out (with the waits counted, the first thread took
-// more pairs until the others waited longer for it: 2026-12-05, benchmarks/JOURNAL.md).
+// Each thread evaluates the rows it wrote, then indexes and sums the particles of its range:
+// first those that are the second member of none of the earlier threads' rows (all their rows
+// are its own, and no other thread reads them any more), then, once the threads before it have
+// evaluated theirs, the shared ones (their rows hold these particles' contacts, and their law
+// reads these particles, which the gather drifts). The threads after it read nothing it
+// writes (their pairs' members all come after its range). The shares follow the times worked,
+// the waits left out (with the waits counted, the first thread took more pairs until the
+// others waited longer for it: 2026-12-05, benchmarks/JOURNAL.md).
 template <class Law> void DemSolver::forcePhasesWith(const Law& pairLaw, const Law& wallLaw,
                                                      double kick, bool openNext) {
   const std::size_t threads = static_cast<std::size_t>(threadCount());
@@ -281,19 +288,27 @@ template <class Law> void DemSolver::forcePhasesWith(const Law& pairLaw, const L
                          vPred_.data(), wPred_.data()};
   const double worst = evaluateContacts(pairLaw, fc, params_.dt, in, tables_[current_],
                                         tables_[1 - current_], rowBegin, rowEnd);
-  chain_.post(me, chainStage_ + 2);
+  chain_.post(me, chainStage_ + 3);
   const double evaluated = seconds() - evaluating;
-  chain_.waitForEarlier(me, chainStage_ + 2);
+  const ContactTable& now = tables_[1 - current_];
+  chain_.waitForEarlier(me, chainStage_ + 2); // their marks are written
+  const double own = seconds();
+  contactsOf_.indexOwnRows(now, pairs_.secondStart, lo, hi, rowBegin, rowEnd, shared_.data(),
+                           chainStage_);
+  gatherForces(wallLaw, fc, kick, openNext, worst, lo, hi, false);
+  const double gathered = seconds() - own;
+  chain_.waitForEarlier(me, chainStage_ + 3);
   const double start = seconds();
-  contactsOf_.index(tables_[1 - current_], pairs_.secondStart, lo, hi, rowEnd);
-  gatherForces(wallLaw, fc, kick, openNext, worst, lo, hi);
-  particleShares_.record(me, threads, collected + evaluated + (seconds() - start));
+  contactsOf_.indexSharedRows(now, pairs_.secondStart, lo, hi, rowEnd, shared_.data(), chainStage_);
+  gatherForces(wallLaw, fc, kick, openNext, 0.0, lo, hi, true);
+  particleShares_.record(me, threads, collected + evaluated + gathered + (seconds() - start));
 }
 
-// Each particle sums its pairs in contact in index order, then its walls in wall order.
+// Each particle sums its pairs in contact in index order, then its walls in wall order: the
+// particles of [lo, hi) that are shared (shared_) or those that are not.
 template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const FrictionConstants& fc,
                                                   double kick, bool openNext, double worst,
-                                                  std::size_t lo, std::size_t hi) {
+                                                  std::size_t lo, std::size_t hi, bool sharedOnes) {
   const ContactParams& cp = params_.contact;
   const double dt = params_.dt;
   const ParticleSet& s = state_;
@@ -310,6 +325,8 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
   // The particles [lo, hi) of this thread, indexed by it (and drifted by it in the last step,
   // their data in its cache).
   for (std::size_t i = lo; i < hi; ++i) {
+    if ((shared_[i] == chainStage_) != sharedOnes)
+      continue;
     Vec f = Vec::Zero(), t = Vec::Zero();
     // Only the pairs in contact, in the order of the pair list (dem/ParticleContacts.h).
     for (std::size_t c = pc.firstBegin[i], e = c + pc.firstCount[i]; c < e; ++c) {

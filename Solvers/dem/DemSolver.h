@@ -12,9 +12,10 @@
 // (reading only the contact flags of the others) and its walls. A step is one parallel region,
 // two when the list is rebuilt. Each thread takes one range of particles, and the pairs whose
 // first member is in it: contact search; the rows' fill, after the threads before it have
-// counted theirs; contact law; the gather, after the threads before it have evaluated theirs
-// (they read its particles, which the gather drifts). No barrier inside the step: a thread waits
-// for the threads before it only (common/ThreadChain.h). The ranges follow the threads'
+// counted theirs; contact law; the gather of the particles no earlier thread's contact has,
+// then, after the threads before it have evaluated theirs (they read these particles, which the
+// gather drifts), of the others. No barrier inside the step: a thread waits for the threads
+// before it only (common/ThreadChain.h). The ranges follow the threads'
 // measured times (dem/WorkShares.h); which thread does an item never changes its arithmetic.
 // A new run first orders the particles along a Morton curve of their cells, so that
 // neighbours sit close in memory (the output keeps each particle's Id, not its input
@@ -142,7 +143,7 @@ private:
   void forcePhasesWith(const Law& pairLaw, const Law& wallLaw, double kick, bool openNext);
   template <class Law> void gatherForces(const Law& wallLaw, const FrictionConstants& fc,
                                          double kick, bool openNext, double worst, std::size_t lo,
-                                         std::size_t hi);
+                                         std::size_t hi, bool sharedOnes);
   // The end of particle i's gather: accelerations a, b; closing half-kick; with openNext the
   // next step's opening half-kick, drift and predicted velocities. Returns the squared
   // displacement since the last build (openNext) or 0.
@@ -176,10 +177,12 @@ private:
   // Each thread's range of the particles (drift, and the contact search, law, index and force
   // sum of the pairs whose first member is in it), adjusted to the threads' measured times
   // (dem/WorkShares.h); a force evaluation's threads wait only for the threads before them
-  // (common/ThreadChain.h), at the stages chainStage_ + 1 (counted) and + 2 (evaluated).
+  // (common/ThreadChain.h), at the stages chainStage_ + 1 (counted), + 2 (rows written) and
+  // + 3 (evaluated). shared_[j] == chainStage_: an earlier thread's row has j as second member.
   WorkShares particleShares_;
   ThreadChain chain_;
   std::uint64_t chainStage_ = 0;
+  std::vector<std::uint64_t> shared_;
   double moved_ = 0.0; // largest squared displacement since the last build
   // The gather of the last step drifted the particles already (state_ holds the next step's
   // positions and half-step velocities; only ever true inside advanceSteps and advanceTo),
