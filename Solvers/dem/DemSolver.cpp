@@ -295,20 +295,26 @@ template <class Law> void DemSolver::forcePhasesWith(const Law& pairLaw, const L
   const double own = seconds();
   contactsOf_.indexOwnRows(now, pairs_.secondStart, lo, hi, rowBegin, rowEnd, shared_.data(),
                            chainStage_);
-  gatherForces(wallLaw, fc, kick, openNext, worst, lo, hi, false);
+  // The first thread has no earlier one: none of its particles is shared (one pass, no marks).
+  const std::uint64_t* marks = me == 0 ? nullptr : shared_.data();
+  gatherForces(wallLaw, fc, kick, openNext, worst, lo, hi, marks, false);
   const double gathered = seconds() - own;
   chain_.waitForEarlier(me, chainStage_ + 3);
   const double start = seconds();
-  contactsOf_.indexSharedRows(now, pairs_.secondStart, lo, hi, rowEnd, shared_.data(), chainStage_);
-  gatherForces(wallLaw, fc, kick, openNext, 0.0, lo, hi, true);
+  if (me > 0) {
+    contactsOf_.indexSharedRows(now, pairs_.secondStart, lo, hi, rowEnd, marks, chainStage_);
+    gatherForces(wallLaw, fc, kick, openNext, 0.0, lo, hi, marks, true);
+  }
   particleShares_.record(me, threads, collected + evaluated + gathered + (seconds() - start));
 }
 
 // Each particle sums its pairs in contact in index order, then its walls in wall order: the
-// particles of [lo, hi) that are shared (shared_) or those that are not.
+// particles of [lo, hi) that are shared (shared[i] == chainStage_) or those that are not, or
+// all of them if `shared` is null.
 template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const FrictionConstants& fc,
                                                   double kick, bool openNext, double worst,
-                                                  std::size_t lo, std::size_t hi, bool sharedOnes) {
+                                                  std::size_t lo, std::size_t hi,
+                                                  const std::uint64_t* shared, bool sharedOnes) {
   const ContactParams& cp = params_.contact;
   const double dt = params_.dt;
   const ParticleSet& s = state_;
@@ -325,7 +331,7 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
   // The particles [lo, hi) of this thread, indexed by it (and drifted by it in the last step,
   // their data in its cache).
   for (std::size_t i = lo; i < hi; ++i) {
-    if ((shared_[i] == chainStage_) != sharedOnes)
+    if (shared != nullptr && (shared[i] == chainStage_) != sharedOnes)
       continue;
     Vec f = Vec::Zero(), t = Vec::Zero();
     // Only the pairs in contact, in the order of the pair list (dem/ParticleContacts.h).

@@ -143,7 +143,8 @@ private:
   void forcePhasesWith(const Law& pairLaw, const Law& wallLaw, double kick, bool openNext);
   template <class Law> void gatherForces(const Law& wallLaw, const FrictionConstants& fc,
                                          double kick, bool openNext, double worst, std::size_t lo,
-                                         std::size_t hi, bool sharedOnes);
+                                         std::size_t hi, const std::uint64_t* shared,
+                                         bool sharedOnes);
   // The end of particle i's gather: accelerations a, b; closing half-kick; with openNext the
   // next step's opening half-kick, drift and predicted velocities. Returns the squared
   // displacement since the last build (openNext) or 0.
