@@ -12,14 +12,14 @@ namespace craterkit {
 
 void ContactTable::resize(std::size_t count) {
   rows = count;
-  first.resize(count);
-  second.resize(count);
-  from.resize(count);
-  for (std::vector<double>& h : history) {
-    h.resize(count + 1);
+  first.resize(count, 0u);
+  second.resize(count, 0u);
+  from.resize(count, 0u);
+  for (FreshVector<double>& h : history) {
+    h.resize(count + 1, 0.0);
     h[count] = 0.0;
   }
-  result.resize(kResultWords * count);
+  result.resize(kResultWords * count, 0.0);
 }
 
 void ContactTable::reserveRows(std::size_t count) {
@@ -28,14 +28,14 @@ void ContactTable::reserveRows(std::size_t count) {
   growFresh(first, count);
   growFresh(second, count);
   growFresh(from, count);
-  for (std::vector<double>& h : history)
+  for (FreshVector<double>& h : history)
     growFresh(h, count + 1);
   growFresh(result, kResultWords * count);
 }
 
 void ContactTable::setRows(std::size_t count) {
   rows = count;
-  for (std::vector<double>& h : history)
+  for (FreshVector<double>& h : history)
     h[count] = 0.0;
 }
 
@@ -69,7 +69,7 @@ void ContactTable::removeParticles(const std::vector<char>& remove,
       continue;
     first[o] = newIndex[first[c]];
     second[o] = newIndex[second[c]];
-    for (std::vector<double>& h : history)
+    for (FreshVector<double>& h : history)
       h[o] = h[c];
     newRow[c] = static_cast<std::uint32_t>(o++);
   }

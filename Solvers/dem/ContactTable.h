@@ -16,6 +16,7 @@
 // evaluated on its own: the results depend neither on its row nor on the number of threads.
 #pragma once
 
+#include "common/GrowFresh.h"
 #include "dem/ContactModels.h"
 
 #include <array>
@@ -30,17 +31,21 @@ struct ContactTable {
   static constexpr int kResultWords = 9;   // force on first, torque on first, on second
 
   std::size_t rows = 0;
-  std::vector<std::uint32_t> first, second; // the particles, first < second
-  std::vector<std::uint32_t> from;          // row in the previous table (its `rows`: new)
+  // FreshVector: the rows a growth adds are left unwritten, and the threads that fill them touch
+  // their pages first (common/GrowFresh.h).
+  FreshVector<std::uint32_t> first, second; // the particles, first < second
+  FreshVector<std::uint32_t> from;          // row in the previous table (its `rows`: new)
   // Component q of row c's history is history[q][c]; row `rows` is all zero (a new contact).
-  std::array<std::vector<double>, kHistoryWords> history;
-  std::vector<double> result; // kResultWords per row
+  std::array<FreshVector<double>, kHistoryWords> history;
+  FreshVector<double> result; // kResultWords per row
 
-  // Sets the number of rows (keeping the memory) and zeroes the history row past the end.
+  // Sets the number of rows (keeping the memory; rows it adds are zero) and zeroes the history
+  // row past the end.
   void resize(std::size_t count);
   // Room for `count` rows and the zero row (the arrays only grow), so that setRows up to it
-  // allocates nothing and one thread of a parallel region may call it. For a table about to
-  // be filled: a growth does not keep the rows' contents.
+  // allocates nothing and a thread of a parallel region may call it. For a table about to be
+  // filled: a growth neither keeps nor zeroes the rows (their pages stay untouched until the
+  // fill writes them), so room for every listed pair costs address space only.
   void reserveRows(std::size_t count);
   std::size_t room() const { return first.size(); }
   // Sets the number of rows (at most room()) and zeroes the history row past the end.

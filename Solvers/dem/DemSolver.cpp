@@ -177,14 +177,14 @@ void DemSolver::computeForces(double kick, bool openNext) {
 #pragma omp parallel if (n_ >= kDemParallelMin)
   forcePhases(kick, openNext);
   current_ = 1 - current_;
-  pairShares_.update();
   particleShares_.update();
 }
 
 // Before a parallel region that evaluates forces, so that the region needs no `single` for
 // it: room for the per-thread results of as many threads as the region can have, for the
-// per-particle index, and for the next table's rows (those of the last one and some more: a
-// step that finds more grows it in the region, at the cost of one more barrier).
+// per-particle index, and for the next table's rows: one for every listed pair, so that no
+// step has to grow it in the region (the rows' pages stay untouched until a thread writes
+// them, dem/ContactTable.h).
 void DemSolver::prepareForces() {
 #ifdef _OPENMP
   const std::size_t most = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
@@ -194,11 +194,12 @@ void DemSolver::prepareForces() {
   if (touching_.size() < most)
     touching_.resize(most);
   touchingCount_.assign(kPad * most, 0);
-  pairShares_.resize(most);
   particleShares_.resize(most);
+  chain_.resize(most);
+  chainStage_ += 3;
+  shared_.resize(n_);
   contactsOf_.resize(n_, pairs_.size());
-  const std::size_t last = tables_[current_].rows;
-  tables_[1 - current_].reserveRows(last + last / 8 + 1024);
+  tables_[1 - current_].reserveRows(pairs_.size());
   worstOverlap_ = 0.0;
   movedNext_ = 0.0;
 }
@@ -216,11 +217,12 @@ void DemSolver::forcePhases(double kick, bool openNext) {
 }
 
 // The pairs in contact now, in the order of the list, become the rows of the next table:
-// each thread tests one contiguous block of pairs, in the order of the thread numbers
-// (dem/TouchingPairs.h), then writes its rows after those of the threads before it. Every
-// thread sums the counts itself, so that one barrier separates the two. Returns the seconds
-// this thread worked (the wait at the barrier left out).
-double DemSolver::collectContacts(std::size_t* rowBegin, std::size_t* rowEnd) {
+// each thread tests the pairs whose first member is in its range [lo, hi) of particles, a block
+// of the list (dem/TouchingPairs.h), then writes its rows after those of the threads before it
+// once these have counted theirs, marking the second members beyond its range as shared.
+// Returns the seconds this thread worked (its wait left out).
+double DemSolver::collectContacts(std::size_t lo, std::size_t hi, std::size_t* rowBegin,
+                                  std::size_t* rowEnd) {
   const double start = seconds();
   const std::size_t t = static_cast<std::size_t>(threadCount()),
                     me = static_cast<std::size_t>(threadNumber());
@@ -231,27 +233,19 @@ double DemSolver::collectContacts(std::size_t* rowBegin, std::size_t* rowEnd) {
   const std::uint32_t* first = pairs_.first.data();
   const std::uint32_t* second = pairs_.second.data();
   char* active = pairs_.active.data();
-  std::vector<std::uint32_t>& mine = touching_[me];
-  const std::size_t pairs = pairs_.size();
-  const std::size_t begin = pairShares_.begin(pairs, me, t),
-                    end = pairShares_.begin(pairs, me + 1, t);
+  FreshVector<std::uint32_t>& mine = touching_[me];
+  const std::size_t begin = pairs_.firstStart[lo], end = pairs_.firstStart[hi];
   mine.resize(end - begin + 1);
   const std::size_t found = findTouchingPairs(x, r, first, second, active, begin, end, mine.data());
   touchingCount_[kPad * me] = found;
+  chain_.post(me, chainStage_ + 1);
   const double searched = seconds() - start;
-#pragma omp barrier
-  std::size_t c = 0, total = 0;
-  for (std::size_t q = 0; q < t; ++q) {
-    c = q == me ? total : c;
-    total += touchingCount_[kPad * q];
-  }
-  if (total > now.room()) { // the same on every thread
-#pragma omp barrier
-#pragma omp single
-    now.reserveRows(total + total / 8);
-  }
-  if (me == 0)
-    now.setRows(total);
+  chain_.waitForEarlier(me, chainStage_ + 1);
+  std::size_t c = 0;
+  for (std::size_t q = 0; q < me; ++q)
+    c += touchingCount_[kPad * q];
+  if (me + 1 == t) // the last thread knows the total (the rows fit: one per listed pair)
+    now.setRows(c + found);
   *rowBegin = c;
   *rowEnd = c + found;
   const double filling = seconds();
@@ -263,40 +257,64 @@ double DemSolver::collectContacts(std::size_t* rowBegin, std::size_t* rowEnd) {
     now.from[c] = active[k] ? row[k] : static_cast<std::uint32_t>(before.rows);
     active[k] = 1;
     row[k] = static_cast<std::uint32_t>(c++);
+    if (second[k] >= hi) // a later thread's particle (two threads may mark the same one)
+      __atomic_store_n(&shared_[second[k]], chainStage_, __ATOMIC_RELAXED);
   }
+  chain_.post(me, chainStage_ + 2);
   return searched + (seconds() - filling);
 }
 
 // Forces and torques at the current positions; with kick > 0 the closing half-kick of the
 // step (v += kick a) is applied in the gather, while the accelerations are in registers.
-// Each thread evaluates the rows it wrote (no barrier between), so its share of the pairs sets
-// both; after one barrier it indexes and sums the particles of its range.
+// Each thread evaluates the rows it wrote, then indexes and sums the particles of its range:
+// first those that are the second member of none of the earlier threads' rows (all their rows
+// are its own, and no other thread reads them any more), then, once the threads before it have
+// evaluated theirs, the shared ones (their rows hold these particles' contacts, and their law
+// reads these particles, which the gather drifts). The threads after it read nothing it
+// writes (their pairs' members all come after its range). The shares follow the times worked,
+// the waits left out (with the waits counted, the first thread took more pairs until the
+// others waited longer for it: 2026-12-05, benchmarks/JOURNAL.md).
 template <class Law> void DemSolver::forcePhasesWith(const Law& pairLaw, const Law& wallLaw,
                                                      double kick, bool openNext) {
-  std::size_t rowBegin = 0, rowEnd = 0;
-  const double collected = collectContacts(&rowBegin, &rowEnd);
-  const double evaluating = seconds();
-  const FrictionConstants fc(params_.contact);
   const std::size_t threads = static_cast<std::size_t>(threadCount());
   const std::size_t me = static_cast<std::size_t>(threadNumber());
+  const std::size_t lo = particleShares_.begin(n_, me, threads),
+                    hi = particleShares_.begin(n_, me + 1, threads);
+  std::size_t rowBegin = 0, rowEnd = 0;
+  const double collected = collectContacts(lo, hi, &rowBegin, &rowEnd);
+  const double evaluating = seconds();
+  const FrictionConstants fc(params_.contact);
   const ContactInputs in{state_.position.data(), state_.radius.data(), state_.mass.data(),
                          vPred_.data(), wPred_.data()};
   const double worst = evaluateContacts(pairLaw, fc, params_.dt, in, tables_[current_],
                                         tables_[1 - current_], rowBegin, rowEnd);
-  pairShares_.record(me, threads, collected + (seconds() - evaluating));
-#pragma omp barrier
+  chain_.post(me, chainStage_ + 3);
+  const double evaluated = seconds() - evaluating;
+  const ContactTable& now = tables_[1 - current_];
+  chain_.waitForEarlier(me, chainStage_ + 2); // their marks are written
+  const double own = seconds();
+  contactsOf_.indexOwnRows(now, pairs_.secondStart, lo, hi, rowBegin, rowEnd, shared_.data(),
+                           chainStage_);
+  // The first thread has no earlier one: none of its particles is shared (one pass, no marks).
+  const std::uint64_t* marks = me == 0 ? nullptr : shared_.data();
+  gatherForces(wallLaw, fc, kick, openNext, worst, lo, hi, marks, false);
+  const double gathered = seconds() - own;
+  chain_.waitForEarlier(me, chainStage_ + 3);
   const double start = seconds();
-  const std::size_t lo = particleShares_.begin(n_, me, threads),
-                    hi = particleShares_.begin(n_, me + 1, threads);
-  contactsOf_.index(tables_[1 - current_], pairs_.secondStart, lo, hi);
-  gatherForces(wallLaw, fc, kick, openNext, worst, lo, hi);
-  particleShares_.record(me, threads, seconds() - start);
+  if (me > 0) {
+    contactsOf_.indexSharedRows(now, pairs_.secondStart, lo, hi, rowEnd, marks, chainStage_);
+    gatherForces(wallLaw, fc, kick, openNext, 0.0, lo, hi, marks, true);
+  }
+  particleShares_.record(me, threads, collected + evaluated + gathered + (seconds() - start));
 }
 
-// Each particle sums its pairs in contact in index order, then its walls in wall order.
+// Each particle sums its pairs in contact in index order, then its walls in wall order: the
+// particles of [lo, hi) that are shared (shared[i] == chainStage_) or those that are not, or
+// all of them if `shared` is null.
 template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const FrictionConstants& fc,
                                                   double kick, bool openNext, double worst,
-                                                  std::size_t lo, std::size_t hi) {
+                                                  std::size_t lo, std::size_t hi,
+                                                  const std::uint64_t* shared, bool sharedOnes) {
   const ContactParams& cp = params_.contact;
   const double dt = params_.dt;
   const ParticleSet& s = state_;
@@ -313,6 +331,8 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
   // The particles [lo, hi) of this thread, indexed by it (and drifted by it in the last step,
   // their data in its cache).
   for (std::size_t i = lo; i < hi; ++i) {
+    if (shared != nullptr && (shared[i] == chainStage_) != sharedOnes)
+      continue;
     Vec f = Vec::Zero(), t = Vec::Zero();
     // Only the pairs in contact, in the order of the pair list (dem/ParticleContacts.h).
     for (std::size_t c = pc.firstBegin[i], e = c + pc.firstCount[i]; c < e; ++c) {
@@ -454,7 +474,6 @@ void DemSolver::advance(bool openNext) {
   }
   if (listHolds()) {
     current_ = 1 - current_; // the forces of the region above
-    pairShares_.update();
     particleShares_.update();
   } else {
     // A non-finite position would poison the cell list: report it here.

@@ -9,10 +9,14 @@
 // Forces are computed in passes so that OpenMP never needs atomics: the pairs in contact are
 // found and written to a compact table (dem/ContactTable.h), the contact law runs over the
 // table's rows, then each particle sums its pairs in contact in index order
-// (reading only the contact flags of the others) and its walls. A step is one parallel region
-// (contact search; the rows' fill and contact law; the gather: two barriers), two regions when
-// the list is rebuilt. Each thread's ranges follow the threads' measured times
-// (dem/WorkShares.h); which thread does an item never changes its arithmetic.
+// (reading only the contact flags of the others) and its walls. A step is one parallel region,
+// two when the list is rebuilt. Each thread takes one range of particles, and the pairs whose
+// first member is in it: contact search; the rows' fill, after the threads before it have
+// counted theirs; contact law; the gather of the particles no earlier thread's contact has,
+// then, after the threads before it have evaluated theirs (they read these particles, which the
+// gather drifts), of the others. No barrier inside the step: a thread waits for the threads
+// before it only (common/ThreadChain.h). The ranges follow the threads'
+// measured times (dem/WorkShares.h); which thread does an item never changes its arithmetic.
 // A new run first orders the particles along a Morton curve of their cells, so that
 // neighbours sit close in memory (the output keeps each particle's Id, not its input
 // position). The result is bit-identical for any thread count, and a run resumed from a checkpoint
@@ -23,6 +27,7 @@
 #include "common/Gravity.h"
 #include "common/ParticleSet.h"
 #include "common/Progress.h"
+#include "common/ThreadChain.h"
 #include "dem/ContactModels.h"
 #include "dem/ContactTable.h"
 #include "dem/PairList.h"
@@ -130,13 +135,16 @@ private:
   void prepareForces();
   void drift();
   void forcePhases(double kick, bool openNext);
-  // Finds this thread's pairs in contact and writes them as rows [*rowBegin, *rowEnd).
-  double collectContacts(std::size_t* rowBegin, std::size_t* rowEnd);
+  // Finds the pairs in contact whose first member is in [lo, hi) and writes them as rows
+  // [*rowBegin, *rowEnd).
+  double collectContacts(std::size_t lo, std::size_t hi, std::size_t* rowBegin,
+                         std::size_t* rowEnd);
   template <class Law>
   void forcePhasesWith(const Law& pairLaw, const Law& wallLaw, double kick, bool openNext);
   template <class Law> void gatherForces(const Law& wallLaw, const FrictionConstants& fc,
                                          double kick, bool openNext, double worst, std::size_t lo,
-                                         std::size_t hi);
+                                         std::size_t hi, const std::uint64_t* shared,
+                                         bool sharedOnes);
   // The end of particle i's gather: accelerations a, b; closing half-kick; with openNext the
   // next step's opening half-kick, drift and predicted velocities. Returns the squared
   // displacement since the last build (openNext) or 0.
@@ -164,12 +172,18 @@ private:
   std::vector<std::uint64_t> wallNear_; // per particle: walls within r + skin at the last build
   ParticleContacts contactsOf_;         // each particle's rows of the new table
   // Per thread: the pairs it found in contact, and how many (kPad apart: one cache line each).
-  std::vector<std::vector<std::uint32_t>> touching_;
+  std::vector<FreshVector<std::uint32_t>> touching_;
   std::vector<std::size_t> touchingCount_;
   static constexpr std::size_t kPad = 8;
-  // Each thread's range of the listed pairs (contact search and law) and of the particles
-  // (force sum and drift), adjusted to the threads' measured times (dem/WorkShares.h).
-  WorkShares pairShares_, particleShares_;
+  // Each thread's range of the particles (drift, and the contact search, law, index and force
+  // sum of the pairs whose first member is in it), adjusted to the threads' measured times
+  // (dem/WorkShares.h); a force evaluation's threads wait only for the threads before them
+  // (common/ThreadChain.h), at the stages chainStage_ + 1 (counted), + 2 (rows written) and
+  // + 3 (evaluated). shared_[j] == chainStage_: an earlier thread's row has j as second member.
+  WorkShares particleShares_;
+  ThreadChain chain_;
+  std::uint64_t chainStage_ = 0;
+  std::vector<std::uint64_t> shared_;
   double moved_ = 0.0; // largest squared displacement since the last build
   // The gather of the last step drifted the particles already (state_ holds the next step's
   // positions and half-step velocities; only ever true inside advanceSteps and advanceTo),

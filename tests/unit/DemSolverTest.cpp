@@ -346,7 +346,8 @@ TEST(DemNeighbours, ContactsMatchBruteForceOracle) {
 // rows by second member, then second-member rows by first member), which keeps the sums
 // bit-identical for any thread count: the per-particle index must list every row of the table
 // once, in that order, however many threads build it and however unevenly the particles are
-// split among them (the splits follow the threads' measured times, dem/WorkShares.h).
+// split among them (the splits follow the threads' measured times, dem/WorkShares.h), and
+// whichever particles are handled as shared (indexed after the earlier threads' rows).
 TEST(DemNeighbours, ParticleContactsListEveryRowInListOrder) {
   Random rng(5);
   const std::size_t n = 300;
@@ -383,10 +384,27 @@ TEST(DemNeighbours, ParticleContactsListEveryRowInListOrder) {
     for (std::size_t t = 1; t < threads; ++t)
       cut.push_back(static_cast<std::size_t>(rng.uniform(0, n)));
     std::sort(cut.begin(), cut.end());
+    // Each thread's rows are those of its first members; a particle that is the second member
+    // of an earlier thread's row is shared, and so are some others at random (a superset of
+    // the shared ones must do as well).
+    const std::uint64_t stamp = 7;
+    std::vector<std::uint64_t> shared(n, 0);
+    std::vector<std::size_t> rowCut(threads + 1, 0);
+    for (std::size_t t = 0; t <= threads; ++t)
+      while (rowCut[t] < rows.size() && rows[rowCut[t]].first < cut[t])
+        ++rowCut[t];
+    for (std::size_t t = 0; t < threads; ++t)
+      for (std::size_t c = rowCut[t]; c < rowCut[t + 1]; ++c)
+        if (rows[c].second >= cut[t + 1] || rng.uniform() < 0.05)
+          shared[rows[c].second] = stamp;
     ParticleContacts pc;
     pc.resize(n, listed.size());
     for (std::size_t t = 0; t < threads; ++t)
-      pc.index(table, secondStart, cut[t], cut[t + 1]);
+      pc.indexOwnRows(table, secondStart, cut[t], cut[t + 1], rowCut[t], rowCut[t + 1],
+                      shared.data(), stamp);
+    for (std::size_t t = 0; t < threads; ++t)
+      pc.indexSharedRows(table, secondStart, cut[t], cut[t + 1], rowCut[t + 1], shared.data(),
+                         stamp);
     for (std::size_t i = 0; i < n; ++i) {
       std::vector<std::size_t> firstWant, secondWant, firstGot, secondGot;
       for (std::size_t c = 0; c < rows.size(); ++c) {
