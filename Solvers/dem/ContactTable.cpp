@@ -1,5 +1,6 @@
 #include "dem/ContactTable.h"
 
+#include "common/CountingIndex.h"
 #include "common/GrowFresh.h"
 #include "dem/PairList.h"
 #include "sph/SimdClones.h"
@@ -222,12 +223,7 @@ void WallContacts::removeParticles(const std::vector<char>& remove,
   history.resize(o);
   active.resize(o);
   // The next build carries the histories by particle: index the renumbered entries.
-  const std::size_t kept = static_cast<std::size_t>(std::count(remove.begin(), remove.end(), 0));
-  start.assign(kept + 1, 0);
-  for (std::size_t c = 0; c < o; ++c)
-    ++start[particle[c] + 1];
-  for (std::size_t i = 0; i < kept; ++i)
-    start[i + 1] += start[i];
+  indexByKey(start, particle, o, keptCount(remove));
 }
 
 } // namespace craterkit

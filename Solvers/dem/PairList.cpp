@@ -1,5 +1,6 @@
 #include "dem/PairList.h"
 
+#include "common/CountingIndex.h"
 #include "common/GrowFresh.h"
 #include "common/OpenMP.h"
 
@@ -185,12 +186,7 @@ void PairList::removeParticles(const std::vector<char>& remove,
   active.resize(o);
   row.resize(o);
   // The next build carries the flags by first member: index the renumbered list.
-  const std::size_t kept = static_cast<std::size_t>(std::count(remove.begin(), remove.end(), 0));
-  firstStart.assign(kept + 1, 0);
-  for (std::size_t k = 0; k < o; ++k)
-    ++firstStart[first[k] + 1];
-  for (std::size_t i = 0; i < kept; ++i)
-    firstStart[i + 1] += firstStart[i];
+  indexByKey(firstStart, first, o, keptCount(remove));
 }
 
 } // namespace craterkit
