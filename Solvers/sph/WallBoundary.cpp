@@ -121,7 +121,7 @@ void WallBoundary::compact(const SphState& s, const std::vector<char>& rigid,
       start_.push_back(static_cast<std::uint32_t>(entry_.size()));
     }
   }
-  builds_ = nb.builds(), size_ = s.size();
+  builds_ = nb.version(), size_ = s.size();
 }
 
 void WallBoundary::apply(SphState& s, std::vector<double>& p, std::vector<double>& c,
@@ -133,7 +133,7 @@ void WallBoundary::apply(SphState& s, std::vector<double>& p, std::vector<double
     any = any || (rigid[m] = par.materials[m].rigid);
   if (!any)
     return;
-  if (nb.builds() != builds_ || s.size() != size_)
+  if (nb.version() != builds_ || s.size() != size_)
     compact(s, rigid, nb);
   if (par.kernel == SphParams::Kernel::WendlandC2)
     extrapolate<WendlandC2>(s, p, c, par, wall_, start_, entry_, need);
