@@ -359,6 +359,7 @@ void NeighbourList::listAll(const Grids& g, const SphState& s, const SphParams& 
   const std::size_t n = s.size();
   const double far = 4.0 * reach;
   ++builds_;
+  stamp_.assign(n, version());
   start_.assign(n + 1, 0);
   clearance_.assign(n, 0.0);
   const int threads = n >= 1024 ? omp_get_max_threads() : 1;

@@ -58,6 +58,9 @@ public:
   std::size_t refreshes() const { return refreshes_; } // partial rebuilds
   // Changes with every build and refresh (for caches that follow the lists).
   std::size_t version() const { return builds_ + refreshes_; }
+  // The version at which a's list last changed (a cache of some lists only needs to follow
+  // those).
+  std::size_t stamp(std::size_t a) const { return stamp_[a]; }
 
 private:
   struct Grids; // the candidates sorted into one sparse grid per level of h
@@ -108,6 +111,7 @@ private:
   double grow_ = 1.0;
   std::size_t builds_ = 0, refreshes_ = 0;
   std::vector<std::uint32_t> changed_;
+  std::vector<std::size_t> stamp_;
   // Kept from the last full build once refresh() is used: the grids (their entries updated to
   // the references of the particles searched since, each still in the cell of its position at
   // the build), each particle's entry in them, those positions and, per level, how far a

@@ -188,6 +188,8 @@ bool NeighbourList::refresh(const SphState& s, const SphParams& par, const std::
   }
   addPairs(pairs);
   ++refreshes_;
+  for (std::uint32_t i : changed_)
+    stamp_[i] = version();
   return true;
 }
 

@@ -393,6 +393,15 @@ void SphSolver::filterRigidPairs(const SphState& s) const {
   bool any = false;
   for (std::size_t m = 0; m < rigidMat.size(); ++m)
     any = any || (rigidMat[m] = par_.materials[m].rigid);
+  if (any && rigidSlot_.size() == n) { // only the rigid particles' lists count
+    bool changed = false;
+    for (std::size_t a = 0; a < n && !changed; ++a)
+      changed = rigidSlot_[a] >= 0 && nb_.stamp(a) > rigidBuild_;
+    if (!changed) {
+      rigidBuild_ = nb_.version();
+      return;
+    }
+  }
   rigidBuild_ = nb_.version();
   rigidSlot_.assign(any ? n : 0, -1);
   rigidStart_.assign(1, 0);
