@@ -20,7 +20,8 @@
 // of a particle has a step more than 4 times (2 levels above) its own; a particle whose step
 // would break this is moved down at once: at the start of its step by a shorter step, in the
 // middle of it by ending the step at the next multiple of the allowed one (woken). Checked for
-// the active particles at every event and for all listed pairs after each new list.
+// the active particles at every event, for all listed pairs after each full build of the lists
+// and for the lists that gained pairs after a partial rebuild (sph/PartialRebuild.cpp).
 //
 // Used only after the late-stage switch, where the flow is slow and the shock has gone: the
 // energy and momentum are then no longer conserved to round-off (a pair's two forces are
@@ -79,13 +80,13 @@ void SphSolver::blockStart(double dtAsk) {
     b.level[i] = blockLevel(0, b.want[i]);
     b.t1[i] = ticks(b.level[i]);
   }
-  blockLimit(0, true);
+  blockLimit(0, nullptr);
 }
 
-void SphSolver::blockLimit(std::uint64_t t, bool all) {
+void SphSolver::blockLimit(std::uint64_t t, const std::vector<std::uint32_t>* from) {
   Block& b = blk_;
   std::vector<std::uint32_t>& q = b.queue;
-  if (all) { // seeded with the particles that have a neighbour too far above them
+  if (!from) { // seeded with the particles that have a neighbour too far above them
     const std::size_t n = s_.size();
     std::vector<char>& seed = b.need;
     seed.assign(n, 0);
@@ -98,7 +99,7 @@ void SphSolver::blockLimit(std::uint64_t t, bool all) {
       if (seed[i])
         q.push_back(static_cast<std::uint32_t>(i));
   } else {
-    q = b.active;
+    q = *from;
   }
   // j's step to at most level k from t (k ≥ the level of the particle that asks, which is
   // active at t, so t is a multiple of its step and the new end lies after t).
@@ -233,7 +234,7 @@ double SphSolver::blockClose(std::uint64_t t) {
     if (std::ldexp(b.tick, b.level[i]) > b.want[i])
       ++b.stats.overruns;
   }
-  blockLimit(t, false);
+  blockLimit(t, &b.active);
   return errMax;
 }
 
@@ -250,8 +251,18 @@ double SphSolver::blockCycle(double dtAsk) {
     // the limiter has not seen.
     const double dt = static_cast<double>(next - t) * b.tick;
     if (!nb_.valid(s_, par_, k1_.dx, k1_.dv, dt)) {
-      nb_.build(s_, par_, k1_.dx, dt);
-      blockLimit(t, true);
+      // First the movers' lists alone (sph/PartialRebuild.cpp; a second pass for the particles
+      // whose clearance the first one lowered); the limiter then needs to see only the lists
+      // that gained pairs.
+      bool kept = false;
+      for (int pass = 0; pass < 3 && !kept && nb_.refresh(s_, par_, k1_.dx, k1_.dv, dt); ++pass) {
+        blockLimit(t, &nb_.changed());
+        kept = nb_.valid(s_, par_, k1_.dx, k1_.dv, dt);
+      }
+      if (!kept) {
+        nb_.build(s_, par_, k1_.dx, dt);
+        blockLimit(t, nullptr);
+      }
       next = b.end;
       for (std::size_t i = 0; i < n; ++i)
         next = std::min(next, b.t1[i]);

@@ -44,7 +44,7 @@ void NeighbourList::Grids::indexCells(
     first[c] += first[c - 1];
 }
 
-NeighbourList::Grids::Grids(const SphState& s, const std::vector<double>& pos,
+NeighbourList::Grids::Grids(const std::vector<double>& hOf, const std::vector<double>& pos,
                             const std::vector<std::uint32_t>& id,
                             const std::vector<std::uint8_t>& particleLevel, int levelCount,
                             const std::vector<double>& mu, double growth)
@@ -55,7 +55,7 @@ NeighbourList::Grids::Grids(const SphState& s, const std::vector<double>& pos,
   levelMu.assign(static_cast<std::size_t>(levels), 0.0);
   levelSize.assign(static_cast<std::size_t>(levels) + 1, 0);
   for (std::size_t q = 0; q < m; ++q) {
-    const double h = s.h[id[q] / 32];
+    const double h = hOf[id[q] / 32];
     const int l = particleLevel[id[q] / 32];
     level[q] = static_cast<std::uint8_t>(l);
     levelH[static_cast<std::size_t>(l)] = std::max(levelH[static_cast<std::size_t>(l)], h);
@@ -99,7 +99,7 @@ NeighbourList::Grids::Grids(const SphState& s, const std::vector<double>& pos,
       const std::uint32_t q = order[r].second;
       spx[r] = pos[3 * q], spy[r] = pos[3 * q + 1], spz[r] = pos[3 * q + 2];
       sid[r] = id[q];
-      sh[r] = s.h[id[q] / 32];
+      sh[r] = hOf[id[q] / 32];
       smu[r] = mu[id[q] / 32];
       if (r == levelSize[static_cast<std::size_t>(l)] || order[r].first != order[r - 1].first) {
         cellKey.push_back(order[r].first);

@@ -16,6 +16,8 @@
 
 namespace craterkit {
 
+constexpr int kMaxGridLevels = 16; // levels of h in the neighbour grids (√2 apart)
+
 // Sparse grids: cells of half the level's reach, keyed (z, y, x) in 64 bits and sorted, so
 // memory and cost do not depend on how far ejecta have flown (a dense grid over a spray
 // kilometres wide would have to coarsen its cells for everyone). Candidate positions are
@@ -34,9 +36,10 @@ struct NeighbourList::Grids {
   std::vector<std::uint32_t> cellStart; // their first entry in the sorted arrays, plus the end
   std::vector<std::size_t> levelCells;  // each level's range in cellKey
 
-  Grids(const SphState& s, const std::vector<double>& pos, const std::vector<std::uint32_t>& id,
-        const std::vector<std::uint8_t>& particleLevel, int levelCount,
-        const std::vector<double>& mu, double growth);
+  // h: each particle's smoothing length (by index, not by entry).
+  Grids(const std::vector<double>& h, const std::vector<double>& pos,
+        const std::vector<std::uint32_t>& id, const std::vector<std::uint8_t>& particleLevel,
+        int levelCount, const std::vector<double>& mu, double growth);
   std::int64_t coord(double v, int k, int l) const {
     return static_cast<std::int64_t>(
         std::clamp(std::floor((v - lo[k]) / cellSize[static_cast<std::size_t>(l)]), 0.0,

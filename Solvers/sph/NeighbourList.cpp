@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -17,7 +18,7 @@ namespace craterkit {
 
 namespace {
 
-constexpr int kMaxLevels = 16; // levels of h in the neighbour grids (√2 apart)
+constexpr int kMaxLevels = kMaxGridLevels;
 
 // A run of candidate partners of one particle, in the neighbour grid's sorted order.
 struct CandidateRange {
@@ -188,8 +189,14 @@ void NeighbourList::build(const SphState& s, const SphParams& par, const std::ve
   std::vector<std::uint32_t> id;
   gatherCandidates(s, par, out_, reach, pos, id);
   setLevels(s, hmax, hmin);
-  const Grids grids(s, pos, id, level_, static_cast<int>(levels_), margin_, grow);
-  listAll(grids, s, par, reach, margins);
+  auto grids =
+      std::make_shared<Grids>(s.h, pos, id, level_, static_cast<int>(levels_), margin_, grow);
+  listAll(*grids, s, par, reach, margins);
+  builtEntries_ = entry_.size();
+  if (keepGrids_)
+    keepGrids(std::move(grids));
+  else
+    grids_.reset();
 }
 
 void NeighbourList::setMargins(const SphState& s, const SphParams& par,
@@ -208,17 +215,21 @@ void NeighbourList::setMargins(const SphState& s, const SphParams& par,
       // lasts as long as a fine one's, and a few fast ones do not force new lists for all.
       // (One margin for all, set by the finest h and the fastest particle, made every list of
       // a late-stage graded run last a step.)
-      if (margins) {
-        double w2 = 0.0;
-        for (int k = 0; k < 3; ++k) {
-          const double w = s.v[3 * i + k] + (dx.size() == s.v.size() ? dx[3 * i + k] : 0.0);
-          w2 += w * w;
-        }
-        margin_[i] = std::max(par.skin * s.h[i], std::min(16.0 * dt * std::sqrt(w2), 0.5 * s.h[i]));
-      }
+      if (margins)
+        margin_[i] = marginOf(s, par, dx, dt, i);
       muMax = std::max(muMax, margin_[i]);
     }
   }
+}
+
+double NeighbourList::marginOf(const SphState& s, const SphParams& par,
+                               const std::vector<double>& dx, double dt, std::size_t i) const {
+  double w2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double w = s.v[3 * i + k] + (dx.size() == s.v.size() ? dx[3 * i + k] : 0.0);
+    w2 += w * w;
+  }
+  return std::max(par.skin * s.h[i], std::min(16.0 * dt * std::sqrt(w2), 0.5 * s.h[i]));
 }
 
 // Levels of smoothing length, a factor of √2 apart (level 0 holds the largest h). With one
@@ -348,6 +359,7 @@ void NeighbourList::listAll(const Grids& g, const SphState& s, const SphParams& 
   const std::size_t n = s.size();
   const double far = 4.0 * reach;
   ++builds_;
+  stamp_.assign(n, version());
   start_.assign(n + 1, 0);
   clearance_.assign(n, 0.0);
   const int threads = n >= 1024 ? omp_get_max_threads() : 1;

@@ -5,10 +5,15 @@
 // range unlisted. Periodic axes are handled by storing, with each neighbour, which image of it
 // is near. A pair (a, b) is listed when r_ab < grow max(h_a, h_b) + max(μ_a, μ_b), μ the
 // margins. The build gives the same lists, in the same order, for any thread count.
+// Between full builds a partial rebuild (refresh, sph/PartialRebuild.cpp) searches again only
+// the particles that have moved: each particle keeps its own reference position, h and margin
+// (those of its last search), and the pairs are those of a full build over the references.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 namespace craterkit {
@@ -34,11 +39,28 @@ public:
   // XSPH), `dv` the accelerations (used when sized like v).
   bool valid(const SphState& s, const SphParams& par, const std::vector<double>& dx,
              const std::vector<double>& dv, double dt) const;
+  // A partial rebuild (sph/PartialRebuild.cpp): the particles that have moved a quarter of
+  // their margin since their last search (or whose h has outgrown the allowance) get new
+  // references and are searched again against everybody's references; their new pairs are
+  // added to both partners' lists (no pair is dropped before the next full build). False,
+  // with the lists untouched, where a full build is due (periodic axes, a particle back in
+  // the domain, too many movers, references far from their cells or lists grown too much);
+  // valid() must be asked again after a true.
+  bool refresh(const SphState& s, const SphParams& par, const std::vector<double>& dx,
+               const std::vector<double>& dv, double dt);
+  // The particles whose lists gained pairs in the last refresh (ascending).
+  const std::vector<std::uint32_t>& changed() const { return changed_; }
   const std::vector<std::uint32_t>& start() const { return start_; } // CSR offsets, size n+1
   const std::vector<std::uint32_t>& entry() const { return entry_; } // index * 32 + image code
   std::vector<std::uint32_t> sortedOf(std::size_t a) const;          // a's entries, sorted
   double margin(std::size_t a) const { return margin_[a]; }
-  std::size_t builds() const { return builds_; }
+  std::size_t builds() const { return builds_; }       // full builds
+  std::size_t refreshes() const { return refreshes_; } // partial rebuilds
+  // Changes with every build and refresh (for caches that follow the lists).
+  std::size_t version() const { return builds_ + refreshes_; }
+  // The version at which a's list last changed (a cache of some lists only needs to follow
+  // those).
+  std::size_t stamp(std::size_t a) const { return stamp_[a]; }
 
 private:
   struct Grids; // the candidates sorted into one sparse grid per level of h
@@ -58,21 +80,51 @@ private:
   void setLevels(const SphState& s, double hmax, double hmin);
   bool visit(const Grids& g, const SphState& s, std::size_t a, std::vector<std::uint32_t>& out,
              std::vector<Handed>& handed, std::vector<std::uint8_t>& keep) const;
+  double marginOf(const SphState& s, const SphParams& par, const std::vector<double>& dx, double dt,
+                  std::size_t i) const;
+  // sph/PartialRebuild.cpp: a's partners at the references over all levels (into `found`),
+  // its clearance, and the clearances a's new reference lowers (into `lowered`).
+  struct Lowered {
+    std::uint32_t to;
+    double clearance;
+  };
+  double searchFresh(const Grids& g, std::size_t a, const std::vector<double>& levelC,
+                     const std::vector<char>& fresh, std::vector<std::uint32_t>& found,
+                     std::vector<Lowered>& lowered) const;
+  void addPairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs);
+  bool pickMovers(const SphState& s, const SphParams& par, const std::vector<double>& dx,
+                  const std::vector<double>& dv, double dt, std::vector<char>& fresh,
+                  std::vector<std::uint32_t>& movers);
   double clearanceOf(const Grids& g, const SphState& s, const SphParams& par, std::size_t a,
                      double far) const;
   void listAll(const Grids& g, const SphState& s, const SphParams& par, double reach, bool margins);
 
   std::vector<std::uint32_t> start_; // CSR offsets, size n+1
   std::vector<std::uint32_t> entry_; // neighbour index * 32 + periodic image code
-  std::vector<double> x_, h_;        // positions and smoothing lengths at the build
-  std::vector<char> out_;            // outside the domain at the build (no neighbours)
+  std::vector<double> x_, h_; // references: position and h at the last search (build or refresh)
+  std::vector<char> out_;     // outside the domain at the build (no neighbours)
   // > 0: no unlisted particle within twice the margin; this much to spare (m)
   std::vector<double> clearance_;
   std::vector<double> margin_; // each particle's: a pair is listed within the larger of its two (m)
   std::vector<std::uint8_t> level_; // each particle's level of h (0: the largest)
   std::size_t levels_ = 1;
   double grow_ = 1.0;
-  std::size_t builds_ = 0;
+  std::size_t builds_ = 0, refreshes_ = 0;
+  std::vector<std::uint32_t> changed_;
+  std::vector<std::size_t> stamp_;
+  // Kept from the last full build once refresh() is used: the grids (their entries updated to
+  // the references of the particles searched since, each still in the cell of its position at
+  // the build), each particle's entry in them, those positions and, per level, how far a
+  // reference has moved from its cell's position since (searches reach that much further).
+  std::shared_ptr<Grids> grids_;
+  std::vector<std::uint32_t> slot_;
+  std::vector<double> gridX_, slack_;
+  std::vector<char> loose_; // references far from their cells, in looseList_ instead
+  std::vector<std::uint32_t> looseList_;
+  std::size_t builtEntries_ = 0; // entries at the last full build
+  bool keepGrids_ = false;
+  void keepGrids(std::shared_ptr<Grids> g);
+  void moveReferences(const std::vector<std::uint32_t>& movers);
   mutable std::vector<double> moved_; // valid()'s displacement bounds (reused)
   std::vector<Work> work_;            // per thread
 };

@@ -285,7 +285,7 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
   std::vector<char> rigidMat(par_.materials.size());
   for (std::size_t m = 0; m < rigidMat.size(); ++m)
     rigidMat[m] = par_.materials[m].rigid;
-  if (rigidBuild_ != nb_.builds())
+  if (rigidBuild_ != nb_.version())
     filterRigidPairs(s);
   const std::int32_t* const rigidSlot = rigidSlot_.empty() ? nullptr : rigidSlot_.data();
   // reused: no allocation in the step loop; workers use Pp and Xp
@@ -393,7 +393,16 @@ void SphSolver::filterRigidPairs(const SphState& s) const {
   bool any = false;
   for (std::size_t m = 0; m < rigidMat.size(); ++m)
     any = any || (rigidMat[m] = par_.materials[m].rigid);
-  rigidBuild_ = nb_.builds();
+  if (any && rigidSlot_.size() == n) { // only the rigid particles' lists count
+    bool changed = false;
+    for (std::size_t a = 0; a < n && !changed; ++a)
+      changed = rigidSlot_[a] >= 0 && nb_.stamp(a) > rigidBuild_;
+    if (!changed) {
+      rigidBuild_ = nb_.version();
+      return;
+    }
+  }
+  rigidBuild_ = nb_.version();
   rigidSlot_.assign(any ? n : 0, -1);
   rigidStart_.assign(1, 0);
   rigidEntry_.clear();

@@ -46,7 +46,8 @@ public:
   void restore(double time, std::size_t steps, double nextStep);
   bool lateStage() const { return late_; }
   std::size_t steps() const { return steps_; }
-  std::size_t neighbourBuilds() const { return nb_.builds(); } // neighbour lists built so far
+  std::size_t neighbourBuilds() const { return nb_.builds(); }       // neighbour lists built so far
+  std::size_t neighbourRefreshes() const { return nb_.refreshes(); } // partial rebuilds so far
   // Particle a's listed neighbours (index * 32 + periodic image code) from the last list
   // build, sorted, and its margin in that build (tests check them against all pairs).
   std::vector<std::uint32_t> neighboursOf(std::size_t a) const { return nb_.sortedOf(a); }
@@ -145,7 +146,8 @@ private:
   void blockPredict(std::uint64_t t);
   double blockClose(std::uint64_t t); // returns the largest error of the updates
   int blockLevel(std::uint64_t t, double want) const;
-  void blockLimit(std::uint64_t t, bool all);
+  // The limiter's pass from the particles in `from` (nullptr: over all listed pairs).
+  void blockLimit(std::uint64_t t, const std::vector<std::uint32_t>* from);
   double closeParticle(std::size_t i, double dt); // one particle's update; returns its error
   // The list entries the pair terms visit for a rigid particle: those of partners that are not
   // rigid at the same velocity (a pair of walls at rest adds only exact zeros). Follows the list.

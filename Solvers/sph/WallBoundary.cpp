@@ -121,7 +121,7 @@ void WallBoundary::compact(const SphState& s, const std::vector<char>& rigid,
       start_.push_back(static_cast<std::uint32_t>(entry_.size()));
     }
   }
-  builds_ = nb.builds(), size_ = s.size();
+  builds_ = nb.version(), size_ = s.size();
 }
 
 void WallBoundary::apply(SphState& s, std::vector<double>& p, std::vector<double>& c,
@@ -133,8 +133,15 @@ void WallBoundary::apply(SphState& s, std::vector<double>& p, std::vector<double
     any = any || (rigid[m] = par.materials[m].rigid);
   if (!any)
     return;
-  if (nb.builds() != builds_ || s.size() != size_)
-    compact(s, rigid, nb);
+  if (nb.version() != builds_ || s.size() != size_) {
+    bool changed = s.size() != size_; // only the rigid particles' lists count
+    for (std::size_t w = 0; w < s.size() && !changed; ++w)
+      changed = rigid[static_cast<std::size_t>(s.material[w])] && nb.stamp(w) > builds_;
+    if (changed)
+      compact(s, rigid, nb);
+    else
+      builds_ = nb.version();
+  }
   if (par.kernel == SphParams::Kernel::WendlandC2)
     extrapolate<WendlandC2>(s, p, c, par, wall_, start_, entry_, need);
   else

@@ -69,7 +69,7 @@ private:
   // code), compacted once per list: most of a container's particles lie deeper than one support
   // from its face, and most entries of a wall near it are walls.
   void compact(const SphState& s, const std::vector<char>& rigid, const NeighbourList& nb);
-  std::size_t builds_ = 0, size_ = 0; // the list (its build count) and state compacted
+  std::size_t builds_ = 0, size_ = 0; // the list (its version) and state compacted
   std::vector<std::uint32_t> wall_, start_, entry_;
 };
 

@@ -241,11 +241,11 @@ int main(int argc, char** argv) {
   if (prob.params.blockStepLevels > 0) {
     const SphSolver::BlockStats& b = solver.blockStats();
     std::printf("block steps: %zu smallest steps, %zu particle updates (%.4f of one step for all "
-                "at each), %zu woken, %zu overruns\n",
+                "at each), %zu woken, %zu overruns, %zu partial list rebuilds\n",
                 b.substeps, b.updates,
                 b.substeps ? static_cast<double>(b.updates) / (static_cast<double>(n) * b.substeps)
                            : 0.0,
-                b.wakes, b.overruns);
+                b.wakes, b.overruns, solver.neighbourRefreshes());
   }
   if (save)
     writeSphCheckpoint(save, solver.state(), solver.time(), solver.steps(), solver.stableStep());
