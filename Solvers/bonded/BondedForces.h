@@ -88,9 +88,11 @@ struct VelocitySpread {
 // half kick v += h f and the drift x += Δt v, each product and sum rounded on its own as in the
 // solver's generic kick-drift. The bits are those of the force pass's kick followed by the
 // generic kick-drift, and the force pass no longer streams v and m. Adds the velocities after
-// the kicks to `spread`.
+// the kicks to `spread`. The drifted positions x + Δt v go to `xOut`: `x` itself, or the second
+// position buffer where the kick-drift runs inside the force pass (BondedSolver::computeForces).
 struct DriftPass {
-  double* x;
+  const double* x;
+  double* xOut;
   double* v;
   const double* f;
   const double* m;

@@ -127,7 +127,7 @@ inline void driftOne(const DriftPass& p, std::size_t i, VelocitySpread& spread) 
       v = __builtin_fma(h, p.f[c], v);
     v += h * p.f[c]; // not fused: this file is compiled with -ffp-contract=off
     p.v[c] = v;
-    p.x[c] += p.dt * v;
+    p.xOut[c] = p.x[c] + p.dt * v; // x += Δt v where xOut is x
     w[k] = v;
   }
   spread.add(w[0], w[1], w[2]);
