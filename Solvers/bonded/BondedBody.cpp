@@ -101,8 +101,9 @@ double estimateBondedBytes(double particles) {
   // cell list (~85 B: sort buffers, each point's cell, each occupied cell's nine rows). Measured
   // at the headline size: 523 B with the dense cell list (~50 B), the process's own ~10 MB
   // included; the sparse one added 37 B to the peak of a window (2026-12-05). The lists' rebuild
-  // trigger (~80 B: the positions at the build, its regions' cell list and their bounds).
-  return 680.0 * particles;
+  // trigger (~80 B: the positions at the build, its regions' cell list and their bounds). The
+  // second position buffer the force pass drifts into (24 B).
+  return 704.0 * particles;
 }
 
 void checkBondedMemory(double particles, double limit, const char* property) {

@@ -86,11 +86,14 @@ struct VelocitySpread {
 // half kick (where avx512Available()): first that deferred second half kick of the previous step
 // (if `pending`), v = fma(h, f, v), the operation blockForcesAvx512 does; then this step's first
 // half kick v += h f and the drift x += Δt v, each product and sum rounded on its own as in the
-// solver's generic kick-drift. The bits are those of the force pass's kick followed by the
-// generic kick-drift, and the force pass no longer streams v and m. Adds the velocities after
-// the kicks to `spread`.
+// solver's generic kick-drift, eight particles at a time. The bits are those of the force pass's
+// kick followed by the generic kick-drift, and the force pass no longer streams v and m. Adds the
+// velocities after the kicks to `spread`. The drifted positions x + Δt v go to `xOut`: `x` itself,
+// or the second position buffer where the kick-drift runs inside the force pass
+// (BondedSolver::computeForces).
 struct DriftPass {
-  double* x;
+  const double* x;
+  double* xOut;
   double* v;
   const double* f;
   const double* m;

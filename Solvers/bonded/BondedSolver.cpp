@@ -17,10 +17,19 @@
 namespace craterkit {
 namespace {
 
-// The AVX-512 passes where the processor has the whole x86-64-v4 level (asked once).
-bool useAvx512() {
-  static const bool on = bondedpass::avx512Available();
-  return on;
+// The kick-drift of the generic passes over particles [i0, i1): the first half kick v += h f and
+// the drift x + Δt v into p.xOut, each product and sum rounded on its own (the operations
+// driftAvx512 repeats); the velocities after the kick go to `spread`.
+void driftGeneric(const bondedpass::DriftPass& p, std::size_t i0, std::size_t i1,
+                  bondedpass::VelocitySpread& spread) {
+  for (std::size_t i = i0; i < i1; ++i) {
+    const double h = p.halfStep / p.m[i];
+    for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
+      p.v[k] += h * p.f[k];
+      p.xOut[k] = p.x[k] + p.dt * p.v[k];
+    }
+    spread.add(p.v[3 * i], p.v[3 * i + 1], p.v[3 * i + 2]);
+  }
 }
 
 // Sum of f(i) over [0, n) in chunks of fixed size, chunk sums added in chunk order: the same
@@ -144,7 +153,7 @@ void BondedSolver::buildPairs() {
   }
   const bondedpass::NearScan scan{cellX_.data(), cellY_.data(), cellZ_.data(), cellId_.data(),
                                   reach2};
-  const bool avx512 = useAvx512();
+  const bool avx512 = avx512_;
   const auto nearCandidates =
       avx512 ? bondedpass::nearCandidatesAvx512 : bondedpass::nearCandidates;
   using Entry = std::pair<std::uint32_t, double>;
@@ -229,7 +238,7 @@ void BondedSolver::buildPairs() {
   ++builds_;
 }
 
-void BondedSolver::computeForces(bool kick) {
+void BondedSolver::computeForces(bool kick, bool driftNext) {
   const std::size_t n = sys_.size(), blocks = blockStart_.size() - 1;
   static_assert(kLanes == bondedpass::kLanes, "the pass and the lists' blocks must agree");
   const ws2017::Law& law = sys_.law;
@@ -241,26 +250,58 @@ void BondedSolver::computeForces(bool kick) {
   pass.rest = rest_.data();
   pass.breaks = blockBreaks_.data();
   pass.force = force_.data();
-  const bool avx512 = useAvx512();
-  // The AVX-512 kick-drift does this half kick at the next step with the same operation.
+  const bool avx512 = avx512_;
+  // The AVX-512 kick-drift does this half kick (at the next step, or here after the forces when
+  // the next step's kick-drift is done here) with the same operation.
   pass.v = kick && !avx512 ? sys_.velocities.data() : nullptr;
-  kickPending_ = kick && avx512;
+  kickPending_ = kick && avx512 && !driftNext;
   pass.m = sys_.masses.data();
   pass.halfStep = 0.5 * dt_;
   pass.terms = {law.sigma * law.sigma, law.epsilon, law.kappa, law.rEq() * law.rEq()};
   pass.rCut2 = law.rCut * law.rCut;
+  // The next step's kick-drift, chunk by chunk once the chunk's forces are final, into the second
+  // position buffer: the pass reads every partner's position from the current one.
+  if (driftNext)
+    nextX_.resize(3 * n);
+  const bondedpass::DriftPass drift{sys_.positions.data(),
+                                    nextX_.data(),
+                                    sys_.velocities.data(),
+                                    force_.data(),
+                                    pass.m,
+                                    dt_,
+                                    0.5 * dt_,
+                                    avx512};
+  const auto kickDriftOf = avx512 ? bondedpass::driftAvx512 : driftGeneric;
   constexpr std::size_t kChunk = 64; // blocks per call
   const long chunks = static_cast<long>((blocks + kChunk - 1) / kChunk);
   long newlyBroken = 0;
   const auto forces = avx512 ? bondedpass::blockForcesAvx512 : bondedpass::blockForces;
+  bondedpass::VelocitySpread spread;
   // Dynamic: a thread that loses its core for a while leaves its chunks to the others; which
-  // thread computes a particle does not change its bits.
-#pragma omp parallel for schedule(dynamic) reduction(+ : newlyBroken)
-  for (long c = 0; c < chunks; ++c)
-    newlyBroken += forces(pass, static_cast<std::size_t>(c) * kChunk,
-                          std::min(blocks, (static_cast<std::size_t>(c) + 1) * kChunk));
+  // thread computes a particle does not change its bits (nor the spread's extremes).
+#pragma omp parallel reduction(+ : newlyBroken)
+  {
+    bondedpass::VelocitySpread mine;
+#pragma omp for schedule(dynamic) nowait
+    for (long c = 0; c < chunks; ++c) {
+      const std::size_t b0 = static_cast<std::size_t>(c) * kChunk,
+                        b1 = std::min(blocks, (static_cast<std::size_t>(c) + 1) * kChunk);
+      newlyBroken += forces(pass, b0, b1);
+      if (driftNext)
+        kickDriftOf(drift, b0 * kLanes, std::min(n, b1 * kLanes), mine);
+    }
+    if (driftNext) {
+#pragma omp critical
+      spread.merge(mine);
+    }
+  }
   if (newlyBroken > 0)
-    bookBreaks();
+    bookBreaks(); // on the positions the pass saw
+  if (driftNext) {
+    sys_.positions.swap(nextX_);
+    spread_ = spread;
+    drifted_ = true;
+  }
 }
 
 // Serial and in bond order, so the dissipated energy has the same bits for any thread count.
@@ -303,16 +344,19 @@ void BondedSolver::bookBreaks() {
 // pair closer than r_eq may be missing from them, then the forces and, in the same pass or
 // deferred to the next kick-drift, the second half kick.
 void BondedSolver::step() {
-  stepDeferred();
+  stepDeferred(false);
   settle();
 }
 
-void BondedSolver::stepDeferred() {
+void BondedSolver::stepDeferred(bool driftNext) {
+  // The kick-drift, unless the last force pass did it.
+  const bondedpass::VelocitySpread spread = drifted_ ? spread_ : kickDrift();
+  drifted_ = false;
   // The trigger bounds the particles' motion relative to each other, region by region
   // (BondedListTrigger): the cloud's fastest fragments no longer set every particle's bound.
-  if (trigger_.expired(sys_.positions.data(), dt_ * kickDrift().relativeSpeed()))
+  if (trigger_.expired(sys_.positions.data(), dt_ * spread.relativeSpeed()))
     buildPairs();
-  computeForces(true);
+  computeForces(true, driftNext);
   ++step_;
 }
 
@@ -320,33 +364,19 @@ void BondedSolver::stepDeferred() {
 bondedpass::VelocitySpread BondedSolver::kickDrift() {
   const long n = static_cast<long>(sys_.size());
   double* x = sys_.positions.data();
-  double* v = sys_.velocities.data();
-  const double* m = sys_.masses.data();
-  const double dt = dt_;
-  const bool pending = kickPending_;
-  const bondedpass::DriftPass p{x, v, force_.data(), m, dt, 0.5 * dt, true};
+  const bondedpass::DriftPass p{
+      x,         x,           sys_.velocities.data(), force_.data(), sys_.masses.data(), dt_,
+      0.5 * dt_, kickPending_};
+  const auto kickDriftOf = kickPending_ ? bondedpass::driftAvx512 : driftGeneric;
   bondedpass::VelocitySpread spread;
   constexpr long kChunk = 2048;
 #pragma omp parallel
   {
     bondedpass::VelocitySpread mine;
 #pragma omp for schedule(dynamic) nowait
-    for (long c = 0; c < (n + kChunk - 1) / kChunk; ++c) {
-      const long end = std::min(n, (c + 1) * kChunk);
-      if (pending) {
-        bondedpass::driftAvx512(p, static_cast<std::size_t>(c * kChunk),
-                                static_cast<std::size_t>(end), mine);
-        continue;
-      }
-      for (long i = c * kChunk; i < end; ++i) {
-        const double h = 0.5 * dt / m[i];
-        for (int k = 0; k < 3; ++k) {
-          v[3 * i + k] += h * force_[3 * i + k];
-          x[3 * i + k] += dt * v[3 * i + k];
-        }
-        mine.add(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
-      }
-    }
+    for (long c = 0; c < (n + kChunk - 1) / kChunk; ++c)
+      kickDriftOf(p, static_cast<std::size_t>(c * kChunk),
+                  static_cast<std::size_t>(std::min(n, (c + 1) * kChunk)), mine);
 #pragma omp critical
     spread.merge(mine);
   }
@@ -359,6 +389,7 @@ void BondedSolver::settle() {
     return;
   const long n = static_cast<long>(sys_.size());
   const bondedpass::DriftPass p{sys_.positions.data(),
+                                sys_.positions.data(),
                                 sys_.velocities.data(),
                                 force_.data(),
                                 sys_.masses.data(),
@@ -377,9 +408,12 @@ void BondedSolver::advance(std::size_t steps, const ProgressCallback& progress) 
   reportProgress(progress, 0.0);
   const std::size_t every = std::max<std::size_t>(1, steps / 100);
   for (std::size_t s = 1; s <= steps; ++s) {
-    stepDeferred();
-    if (s == steps || (progress && s % every == 0)) {
-      settle(); // the state is whole at every report (an abort keeps it) and at the end
+    // The state is whole at every report (an abort keeps it) and at the end; in between, each
+    // force pass does the next step's kick-drift too.
+    const bool whole = s == steps || (progress && s % every == 0);
+    stepDeferred(!whole);
+    if (whole) {
+      settle();
       reportProgress(progress, static_cast<double>(s) / static_cast<double>(steps));
     }
   }

@@ -25,8 +25,12 @@
 //
 // Where the AVX-512 passes run, the second half kick of a step is left to the next step's
 // kick-drift (which streams v, f and m anyway) with the operation the force pass would have done,
-// so the force pass writes f only; every public call (step, advance) ends with it done. The
-// rebuild tests its candidates on a copy of the positions in the cell list's order.
+// so the force pass writes f only; every public call (step, advance) ends with it done. Inside
+// advance(), between progress reports, the force pass also does the next step's kick-drift, chunk
+// by chunk once a chunk's forces are final (the second half kick, the next first half kick, the
+// drift into a second position buffer, the velocities' spread): the same operations in the same
+// order, so the same bits, without a separate pass over x, v, f and m. The rebuild tests its
+// candidates on a copy of the positions in the cell list's order.
 //
 // OpenMP without atomics (chunks handed out dynamically, which changes no result): each particle
 // sums its own list entries in index order of the partners, and energies are summed over fixed-size
@@ -89,6 +93,8 @@ public:
   const BondedSystem& system() const { return sys_; }
   const std::vector<std::uint8_t>& bondBroken() const { return bondBroken_; }
   const std::vector<double>& forces() const { return force_; }
+  // Runs the generic passes even where the AVX-512 ones could (both give the same bits there).
+  void useGenericPasses() { avx512_ = false; }
 
   // Whole state, through writeFileAtomically; readCheckpoint gives a bit-identical run.
   void writeCheckpoint(const std::string& path) const;
@@ -98,11 +104,15 @@ private:
   BondedSolver() = default;
   void prepare();
   void buildPairs();
-  void computeForces(bool kick);
+  // The forces (and the second half kick if `kick`); if `driftNext`, the next step's kick-drift
+  // too, into the second position buffer, swapped in after the pass (drifted_).
+  void computeForces(bool kick, bool driftNext = false);
   void bookBreaks();
   // One step; where the AVX-512 passes run, the second half kick is left pending (kickPending_)
-  // and done by the next step's kick-drift, so that the force pass does not stream v and m.
-  void stepDeferred();
+  // and done by the next step's kick-drift, so that the force pass does not stream v and m. With
+  // `driftNext`, that kick-drift is done inside this step's force pass (the state is then not
+  // whole until the next step).
+  void stepDeferred(bool driftNext);
   bondedpass::VelocitySpread kickDrift();
   void settle(); // the pending half kick, if any: every public call ends with none pending
 
@@ -116,6 +126,12 @@ private:
   std::vector<double> force_;
   BondedListTrigger trigger_; // when the lists must be rebuilt
   bool kickPending_ = false;
+  bool avx512_ = bondedpass::avx512Available(); // the AVX-512 passes (x86-64-v4), else generic
+  // The second position buffer the force pass drifts into; drifted_: the positions are already
+  // those of the next step's drift, with the velocities' spread after its kicks.
+  std::vector<double> nextX_;
+  bool drifted_ = false;
+  bondedpass::VelocitySpread spread_;
   std::vector<std::uint8_t> bondBroken_; // 0 intact, 1 broken
   std::vector<std::size_t> bondStart_;   // each particle's bonds: bondsOf_[bondStart_[i]...]
   std::vector<std::uint32_t> bondsOf_;

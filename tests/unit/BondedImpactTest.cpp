@@ -653,3 +653,47 @@ TEST(BondedImpact, CheckpointRestartAndThreadsBitIdentical) {
   EXPECT_TRUE(sameBits(aborted.system().velocities, ten.system().velocities));
   EXPECT_TRUE(sameBits(aborted.system().positions, ten.system().positions));
 }
+
+// Inside advance() each force pass does the next step's kick-drift too (into a second position
+// buffer), where step() keeps the passes apart: the same operations in the same order, so the
+// same bits, through bond breaking and list rebuilds, with progress reports (where the state is
+// made whole) in between, on the AVX-512 passes and on the generic ones (which give the same bits
+// where both run).
+TEST(BondedImpact, KickDriftInsideTheForcePassBitIdentical) {
+  const BondedSystem start = buildBondedImpact(smallImpact(6700.0, 800));
+  BondedSolver stepped(start);
+  const std::size_t steps = static_cast<std::size_t>(std::ceil(1.2e-6 / stepped.timeStep()));
+  const std::size_t last = 200; // the window in which breaks and a rebuild must happen
+  for (std::size_t s = 0; s < steps - last; ++s)
+    stepped.step();
+  const std::size_t brokenBefore = stepped.brokenBonds(), buildsBefore = stepped.listBuilds();
+  for (std::size_t s = 0; s < last; ++s)
+    stepped.step();
+  std::printf("[bonded] fused kick-drift: %zu steps, broken %zu -> %zu, builds %zu -> %zu in the "
+              "last %zu\n",
+              steps, brokenBefore, stepped.brokenBonds(), buildsBefore, stepped.listBuilds(), last);
+  EXPECT_GT(stepped.brokenBonds(), brokenBefore);
+  EXPECT_GT(stepped.listBuilds(), buildsBefore);
+
+  BondedSolver fused(start), reported(start), generic(start), genericStepped(start);
+  fused.advance(steps);
+  int reports = 0;
+  reported.advance(steps, [&](double) { return ++reports > 0; });
+  generic.useGenericPasses();
+  generic.advance(steps);
+  genericStepped.useGenericPasses();
+  for (std::size_t s = 0; s < steps; ++s)
+    genericStepped.step();
+  EXPECT_GT(reports, 100);
+  for (const BondedSolver* other : {&fused, &reported, &generic, &genericStepped}) {
+    EXPECT_EQ(other->stepCount(), stepped.stepCount());
+    EXPECT_TRUE(sameBits(other->system().positions, stepped.system().positions));
+    EXPECT_TRUE(sameBits(other->system().velocities, stepped.system().velocities));
+    EXPECT_TRUE(sameBits(other->forces(), stepped.forces()));
+    EXPECT_TRUE(sameBits(other->bondBroken(), stepped.bondBroken()));
+    EXPECT_EQ(other->listBuilds(), stepped.listBuilds());
+    EXPECT_EQ(other->listMeasurements(), stepped.listMeasurements());
+    const BondedEnergies a = other->energies(), b = stepped.energies();
+    EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0);
+  }
+}
