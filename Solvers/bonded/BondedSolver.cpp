@@ -270,7 +270,7 @@ void BondedSolver::computeForces(bool kick, bool driftNext) {
                                     pass.m,
                                     dt_,
                                     0.5 * dt_,
-                                    avx512};
+                                    kick && avx512};
   const auto kickDriftOf = avx512 ? bondedpass::driftAvx512 : driftGeneric;
   constexpr std::size_t kChunk = 64; // blocks per call
   const long chunks = static_cast<long>((blocks + kChunk - 1) / kChunk);

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 #include <thread>
+#include <utility>
 
 namespace craterkit {
 
@@ -25,12 +26,18 @@ public:
   // The state means something only inside a region: a copy starts afresh.
   ThreadChain(const ThreadChain& other) { resize(other.size_); }
   ThreadChain& operator=(const ThreadChain& other) {
-    if (this != &other)
+    if (this != &other) {
+      flags_.reset(), size_ = 0; // fresh flags: stages carried over would release waits early
       resize(other.size_);
+    }
     return *this;
   }
-  ThreadChain(ThreadChain&&) = default;
-  ThreadChain& operator=(ThreadChain&&) = default;
+  ThreadChain(ThreadChain&& other) noexcept
+      : flags_(std::move(other.flags_)), size_(std::exchange(other.size_, 0)) {}
+  ThreadChain& operator=(ThreadChain&& other) noexcept {
+    flags_ = std::move(other.flags_), size_ = std::exchange(other.size_, 0);
+    return *this;
+  }
 
   // Room for `threads` threads (serially, outside a region); keeps the stages if it has it.
   void resize(std::size_t threads) {

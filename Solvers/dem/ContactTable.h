@@ -42,13 +42,12 @@ struct ContactTable {
   // Sets the number of rows (keeping the memory; rows it adds are zero) and zeroes the history
   // row past the end.
   void resize(std::size_t count);
-  // Room for `count` rows and the zero row (the arrays only grow), so that setRows up to it
-  // allocates nothing and a thread of a parallel region may call it. For a table about to be
+  // Room for `count` rows and the zero row (serially, before the fill), so that setRows up to it
+  // allocates nothing. For a table about to be
   // filled: a growth neither keeps nor zeroes the rows (their pages stay untouched until the
   // fill writes them), so room for every listed pair costs address space only.
   void reserveRows(std::size_t count);
-  std::size_t room() const { return first.size(); }
-  // Sets the number of rows (at most room()) and zeroes the history row past the end.
+  // Sets the number of rows (at most the reserved count) and zeroes the history row past the end.
   void setRows(std::size_t count);
   ContactHistory historyAt(std::size_t row) const;
   void setHistory(std::size_t row, const ContactHistory& h);

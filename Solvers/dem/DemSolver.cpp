@@ -293,10 +293,9 @@ template <class Law> void DemSolver::forcePhasesWith(const Law& pairLaw, const L
   const ContactTable& now = tables_[1 - current_];
   chain_.waitForEarlier(me, chainStage_ + 2); // their marks are written
   const double own = seconds();
-  contactsOf_.indexOwnRows(now, pairs_.secondStart, lo, hi, rowBegin, rowEnd, shared_.data(),
-                           chainStage_);
   // The first thread has no earlier one: none of its particles is shared (one pass, no marks).
   const std::uint64_t* marks = me == 0 ? nullptr : shared_.data();
+  contactsOf_.indexOwnRows(now, pairs_.secondStart, lo, hi, rowBegin, rowEnd, marks, chainStage_);
   gatherForces(wallLaw, fc, kick, openNext, worst, lo, hi, marks, false);
   const double gathered = seconds() - own;
   chain_.waitForEarlier(me, chainStage_ + 3);

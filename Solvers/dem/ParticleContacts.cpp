@@ -22,7 +22,7 @@ void ParticleContacts::indexOwnRows(const ContactTable& table,
     if (firstCount[first[c]]++ == 0)
       firstBegin[first[c]] = static_cast<std::uint32_t>(c);
     const std::uint32_t j = second[c];
-    if (j < hi && shared[j] != stamp) // j > first[c] >= lo
+    if (j < hi && (!shared || shared[j] != stamp)) // j > first[c] >= lo
       secondRow[secondStart[j] + secondCount[j]++] = static_cast<std::uint32_t>(c);
   }
 }
@@ -32,7 +32,7 @@ void ParticleContacts::indexSharedRows(const ContactTable& table,
                                        std::size_t hi, std::size_t rowEnd,
                                        const std::uint64_t* shared, std::uint64_t stamp) {
   const std::uint32_t* second = table.second.data();
-  for (std::size_t c = 0; c < rowEnd; ++c) { // in row order, as index() does
+  for (std::size_t c = 0; c < rowEnd; ++c) { // in row order, as indexOwnRows does
     const std::uint32_t j = second[c];
     if (j >= lo && j < hi && shared[j] == stamp)
       secondRow[secondStart[j] + secondCount[j]++] = static_cast<std::uint32_t>(c);

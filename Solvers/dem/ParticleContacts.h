@@ -23,17 +23,17 @@ struct ParticleContacts {
   // secondRow[secondStart[i] + q], q < secondCount[i], have it as second.
   std::vector<std::uint32_t> firstBegin, firstCount, secondCount, secondRow;
 
-  // Sizes the arrays for n particles and a pair list of `pairs` slots (once, before index()).
+  // Sizes the arrays for n particles and a pair list of `pairs` slots (once, before indexing).
   void resize(std::size_t n, std::size_t pairs);
   // Indexes the rows of `table` for the particles [lo, hi), in two parts: called by every
   // thread of a team for its own range (the one it then gathers), the ranges together covering
   // all particles. The threads write their rows in thread order, each the rows of the first
   // members of its range: rows [rowBegin, rowEnd). A particle of the range that is the second
   // member of a row written by an earlier thread is shared (shared[j] == stamp; a superset will
-  // do). indexOwnRows indexes every first member and the second members that are not shared
-  // (all their rows are the thread's own) as soon as the thread has written its rows;
-  // indexSharedRows then the shared ones, from all rows below rowEnd, once the earlier threads
-  // have written theirs.
+  // do; the first thread passes no marks: it has no earlier thread). indexOwnRows indexes every
+  // first member and the second members that are not shared (all their rows are the thread's own)
+  // as soon as the thread has written its rows; indexSharedRows then the shared ones, from all rows
+  // below rowEnd, once the earlier threads have written theirs.
   void indexOwnRows(const ContactTable& table, const std::vector<std::size_t>& secondStart,
                     std::size_t lo, std::size_t hi, std::size_t rowBegin, std::size_t rowEnd,
                     const std::uint64_t* shared, std::uint64_t stamp);

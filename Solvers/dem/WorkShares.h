@@ -1,8 +1,9 @@
 // How a DEM step's loops are split among the threads (pkdgrav SSDEM; Schwartz, Richardson &
 // Michel 2012: one step is a contact search, a contact law and a force sum over the particles).
 //
-// Each loop of a step is split into one contiguous range per thread, and the threads meet at a
-// barrier after it: a thread that finishes early waits for the other. Equal ranges are not
+// A step's particles (and their pairs) are split into one contiguous range per thread, each
+// thread waiting only for the threads before it (common/ThreadChain.h): a thread that finishes
+// early still waits at the step's end. Equal ranges are not
 // equal times (the threads' processors are not equally fast on a shared machine, and the pairs
 // and particles differ in cost), and the waits took 9 % of a two-thread run's samples
 // (benchmarks/JOURNAL.md, DEM bed impact). So the ranges follow the measured times: after each

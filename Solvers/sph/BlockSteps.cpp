@@ -251,9 +251,9 @@ double SphSolver::blockCycle(double dtAsk) {
     // the limiter has not seen.
     const double dt = static_cast<double>(next - t) * b.tick;
     if (!nb_.valid(s_, par_, k1_.dx, k1_.dv, dt)) {
-      // First the movers' lists alone (sph/PartialRebuild.cpp; a second pass for the particles
-      // whose clearance the first one lowered); the limiter then needs to see only the lists
-      // that gained pairs.
+      // First the movers' lists alone (sph/PartialRebuild.cpp; up to two more passes for the
+      // particles whose clearance the one before lowered); the limiter then needs to see only the
+      // lists that gained pairs.
       bool kept = false;
       for (int pass = 0; pass < 3 && !kept && nb_.refresh(s_, par_, k1_.dx, k1_.dv, dt); ++pass) {
         blockLimit(t, &nb_.changed());

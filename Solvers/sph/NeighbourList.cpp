@@ -103,9 +103,9 @@ bool outsideDomain(const SphState& s, const SphParams& par, std::size_t i) {
 bool NeighbourList::valid(const SphState& s, const SphParams& par, const std::vector<double>& dx,
                           const std::vector<double>& dv, double dt) const {
   // Valid while no pair can have come within its listing range without being listed. A pair
-  // closes in by at most the sum of its two particles' displacements D (since the build, plus
-  // 1.5 dt |v| for the motion still to come in this step). An unlisted pair had at least the
-  // larger of its two margins to spare; but a particle with a clearance C (no unlisted
+  // closes in by at most the sum of its two particles' displacements D (since each one's last
+  // search, plus 1.5 dt |v| for the motion still to come in this step). An unlisted pair had at
+  // least the larger of its two margins to spare; but a particle with a clearance C (no unlisted
   // particle within twice the margin at the build: ejecta in flight, alone or in small clumps)
   // had C to spare against everybody and needs only D + D_max < C. Such particles are left out
   // of the pairs' check, so that a few fast fragments do not force a new list for all. And no

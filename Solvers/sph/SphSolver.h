@@ -48,8 +48,9 @@ public:
   std::size_t steps() const { return steps_; }
   std::size_t neighbourBuilds() const { return nb_.builds(); }       // neighbour lists built so far
   std::size_t neighbourRefreshes() const { return nb_.refreshes(); } // partial rebuilds so far
-  // Particle a's listed neighbours (index * 32 + periodic image code) from the last list
-  // build, sorted, and its margin in that build (tests check them against all pairs).
+  // Particle a's listed neighbours (index * 32 + periodic image code) in the current
+  // lists (a full build or a partial rebuild), sorted, and its margin in that build (tests check
+  // them against all pairs).
   std::vector<std::uint32_t> neighboursOf(std::size_t a) const { return nb_.sortedOf(a); }
   double neighbourMargin(std::size_t a) const { return nb_.margin(a); }
   const SphState& state() const { return s_; }
@@ -171,7 +172,7 @@ private:
   std::vector<double> p_, c_;  // pressure and sound speed of the current state
   mutable WallBoundary walls_; // rigid particles' pressure (its cache follows the list)
   // Rigid particles' entries without their rigid partners at the same velocity (CSR over the
-  // rigid particles in order; rigidSlot_ maps a particle to its row, or -1), for list build
+  // rigid particles in order; rigidSlot_ maps a particle to its row, or -1), for list version
   // rigidBuild_.
   mutable std::vector<std::uint32_t> rigidStart_, rigidEntry_;
   mutable std::vector<std::int32_t> rigidSlot_;

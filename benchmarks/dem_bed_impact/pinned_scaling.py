@@ -37,6 +37,7 @@ import json
 import os
 import statistics
 import subprocess
+import sys
 import time
 
 CONFIGS = [("1@cpu0", 1, "0"), ("1@cpu1", 1, "1"), ("2@cpu0,1", 2, "0,1")]
@@ -130,7 +131,12 @@ def main():
                   f"2 threads {t2:.3f} s over {len(calm[CONFIGS[2][0]])})")
         else:
             print(f"{name}: quiet: too few quiet runs")
+    if len(hashes) > 1:
+        print("error: the runs' state hashes differ: the binaries or thread counts do not compute "
+              "the same steps, so their times are not comparable", file=sys.stderr)
+        return 1
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -118,6 +118,9 @@ def sci_run(args, name, gravity, particles, packings, extra):
 # 44 % deeper (3.54 m against 2.46 m), so it is no longer the validation's stage.
 RYUGU_STAGE = ["--sph-coarsening", "10", "--sph-domain-radius", "29", "--sph-target-radius", "11.6",
                "--late-stage-sound-speed", "0.46637", "--sph-block-steps", "7"]
+# Their folder under BUILD/slow names the stage, so that --resume never takes another stage's
+# hand-off (sci_crater.py reuses a sph_handoff.vtp it finds).
+RYUGU_DIR = "sci_ryugu_c10"
 SCI = {"diameter": 14.5, "rim_diameter": 18.0, "depth": 2.3}
 
 
@@ -127,7 +130,7 @@ def sci_crater_ryugu(args):
     the 100,000-grain bed of sci_convergence_bed took 5,719 s at coarsening 15 with other work on
     the machine, past 45 minutes): D within 15 % of 14.5 m, depth within 25 % of
     2.3 m, rim diameter within 20 % of 18 m (Zhang et al. 2021 and docs/physics.md §4.1)."""
-    r = sci_run(args, "sci_ryugu", 1.5e-4, [30000], ["RCP"], RYUGU_STAGE)[("RCP", 30000)]
+    r = sci_run(args, RYUGU_DIR, 1.5e-4, [30000], ["RCP"], RYUGU_STAGE)[("RCP", 30000)]
     rows = []
     for key, label, tol in (("crater_diameter_m", "diameter", 0.15), ("crater_depth_m", "depth", 0.25),
                             ("rim_diameter_m", "rim_diameter", 0.20)):
@@ -160,9 +163,9 @@ def convergence_rows(case, coarse, fine, what):
 def sci_convergence_bed(args):
     """Convergence in the bed: the Ryugu case's SPH stage handed to 30,000 (the
     Ryugu case's own run) and 100,000 RCP grains; D and depth must change by less than 10 %."""
-    coarse = ryugu_report(args, "sci_ryugu")
+    coarse = ryugu_report(args, RYUGU_DIR)
     fine = sci_run(args, "sci_ryugu_bed100k", 1.5e-4, [100000], ["RCP"],
-                   RYUGU_STAGE + ["--sph-state", os.path.join(args.build, "slow", "sci_ryugu", "RCP_30000",
+                   RYUGU_STAGE + ["--sph-state", os.path.join(args.build, "slow", RYUGU_DIR, "RCP_30000",
                                                               "sph_handoff.vtp")])[("RCP", 100000)]
     return convergence_rows("sci_convergence_bed", coarse, fine, "30,000 -> 100,000 grains")
 
@@ -171,7 +174,7 @@ def sci_convergence_sph(args):
     """Convergence in the SPH stage: the Ryugu case (30,000 RCP grains) on the coarsening-10 and
     the coarsening-8 SPH targets (coarse spacing 0.38 and 0.30 m); D and depth must change by
     less than 10 %. (Coarsening 15 -> 10 changed the depth by 44 %: docs/validation.md.)"""
-    coarse = ryugu_report(args, "sci_ryugu")
+    coarse = ryugu_report(args, RYUGU_DIR)
     stage = list(RYUGU_STAGE)
     stage[stage.index("--sph-coarsening") + 1] = "8"
     fine = sci_run(args, "sci_ryugu_c8", 1.5e-4, [30000], ["RCP"], stage)[("RCP", 30000)]
@@ -183,7 +186,7 @@ def rcp_vs_hcp(args):
     claim is that HCP makes the smaller, shallower crater. Stated as measured; the case fails only
     if a run fails."""
     r = sci_run(args, "sci_ryugu_packing", 1.5e-4, [30000], ["RCP", "HCP"],
-                RYUGU_STAGE + ["--sph-state", os.path.join(args.build, "slow", "sci_ryugu", "RCP_30000",
+                RYUGU_STAGE + ["--sph-state", os.path.join(args.build, "slow", RYUGU_DIR, "RCP_30000",
                                                            "sph_handoff.vtp")])
     rcp, hcp = r[("RCP", 30000)], r[("HCP", 30000)]
     return [Row("rcp_vs_hcp", f"HCP / RCP {q}", hcp[k] / rcp[k], "< 1 (seed)", "stated", True)
@@ -198,7 +201,7 @@ def pi_scaling(args):
     for g, n in ((1000.0, 6000), (10.0, 6000)):
         r = sci_run(args, f"pi_scaling_g{g:g}", g, [n], ["RCP"], [])[("RCP", n)]
         ratios.append((g, r["diameter_over_pi_scaling"]))
-    ratios.append((1.5e-4, ryugu_report(args, "sci_ryugu")["diameter_over_pi_scaling"]))
+    ratios.append((1.5e-4, ryugu_report(args, RYUGU_DIR)["diameter_over_pi_scaling"]))
     mean = sum(x for _, x in ratios) / len(ratios)
     for g, x in ratios:
         rows.append(Row("pi_scaling", f"D / D_pi at g = {g:g} m/s²", x, f"{mean:.3g} (mean)", "± 15 %",

@@ -399,10 +399,10 @@ TEST(DemNeighbours, ParticleContactsListEveryRowInListOrder) {
           shared[rows[c].second] = stamp;
     ParticleContacts pc;
     pc.resize(n, listed.size());
-    for (std::size_t t = 0; t < threads; ++t)
+    for (std::size_t t = 0; t < threads; ++t) // the first thread as the solver calls it: no marks
       pc.indexOwnRows(table, secondStart, cut[t], cut[t + 1], rowCut[t], rowCut[t + 1],
-                      shared.data(), stamp);
-    for (std::size_t t = 0; t < threads; ++t)
+                      t == 0 ? nullptr : shared.data(), stamp);
+    for (std::size_t t = 1; t < threads; ++t)
       pc.indexSharedRows(table, secondStart, cut[t], cut[t + 1], rowCut[t + 1], shared.data(),
                          stamp);
     for (std::size_t i = 0; i < n; ++i) {
