@@ -101,6 +101,12 @@ struct DriftPass {
   bool pending;
 };
 void driftAvx512(const DriftPass& p, std::size_t i0, std::size_t i1, VelocitySpread& spread);
+// blockForcesAvx512 over blocks [b0, b1) (p.v null) with the kick-drift of driftAvx512 over their
+// particles done block by block, on the block's forces and positions still in registers, into
+// d.xOut (d.f is p.force, d.x is p.x): the bits of the pass followed by driftAvx512, and the
+// velocities and masses are streamed once, block by block. Only where avx512Available().
+long blockForcesDriftAvx512(const BlockPass& p, const DriftPass& d, std::size_t b0, std::size_t b1,
+                            VelocitySpread& spread);
 // The rebuild's candidate test over a copy of the positions in the cell list's order (x, y, z
 // apart, with the particles' indices): which of entries [begin, end) lie closer than the reach to
 // `xi`, other than the particle `self`. Their indices are written to `out` (which must have room

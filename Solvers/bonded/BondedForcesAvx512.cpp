@@ -43,9 +43,94 @@ inline void loadPositions(const double* x, __m256i ids, __m512d& px, __m512d& py
 
 } // namespace
 
+namespace {
+
+// Eight particles' 24 consecutive coordinates (coordinate k of particle l at lane (3 l + k) % 8 of
+// a[(3 l + k) / 8]) from their x, y and z: the inverse of transpose below.
+inline void interleave(__m512d x, __m512d y, __m512d z, __m512d a[3]) {
+  const __m512i a0 = _mm512_setr_epi64(0, 8, 0, 1, 9, 0, 2, 10),
+                b0 = _mm512_setr_epi64(0, 1, 8, 3, 4, 9, 6, 7);
+  const __m512i a1 = _mm512_setr_epi64(0, 3, 11, 0, 4, 12, 0, 5),
+                b1 = _mm512_setr_epi64(10, 1, 2, 11, 4, 5, 12, 7);
+  const __m512i a2 = _mm512_setr_epi64(13, 0, 6, 14, 0, 7, 15, 0),
+                b2 = _mm512_setr_epi64(0, 13, 2, 3, 14, 5, 6, 15);
+  a[0] = _mm512_permutex2var_pd(_mm512_permutex2var_pd(x, a0, y), b0, z);
+  a[1] = _mm512_permutex2var_pd(_mm512_permutex2var_pd(x, a1, y), b1, z);
+  a[2] = _mm512_permutex2var_pd(_mm512_permutex2var_pd(x, a2, y), b2, z);
+}
+
+// Eight particles' x, y and z from their 24 consecutive coordinates a0, a1, a2 (coordinate c at
+// lane c % 8 of a[c / 8]): coordinate k of particle l is c = 3 l + k.
+inline void transpose(__m512d a0, __m512d a1, __m512d a2, __m512d& x, __m512d& y, __m512d& z) {
+  const __m512i x01 = _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0),
+                x2 = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 10, 13);
+  const __m512i y01 = _mm512_setr_epi64(1, 4, 7, 10, 13, 0, 0, 0),
+                y2 = _mm512_setr_epi64(0, 1, 2, 3, 4, 8, 11, 14);
+  const __m512i z01 = _mm512_setr_epi64(2, 5, 8, 11, 14, 0, 0, 0),
+                z2 = _mm512_setr_epi64(0, 1, 2, 3, 4, 9, 12, 15);
+  x = _mm512_permutex2var_pd(_mm512_permutex2var_pd(a0, x01, a1), x2, a2);
+  y = _mm512_permutex2var_pd(_mm512_permutex2var_pd(a0, y01, a1), y2, a2);
+  z = _mm512_permutex2var_pd(_mm512_permutex2var_pd(a0, z01, a1), z2, a2);
+}
+
+// The velocities' spread over eight lanes (the operations of VelocitySpread::add, unfused).
+struct LaneSpread {
+  __m512d speed2, lo[3], hi[3];
+  LaneSpread() { // written out: an implicit constructor is not compiled for x86-64-v4
+    speed2 = _mm512_setzero_pd();
+    for (int k = 0; k < 3; ++k)
+      lo[k] = _mm512_set1_pd(kNoBond), hi[k] = _mm512_set1_pd(-kNoBond);
+  }
+  void add(__m512d vx, __m512d vy, __m512d vz) {
+    speed2 = _mm512_max_pd(
+        speed2, _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(vx, vx), _mm512_mul_pd(vy, vy)),
+                              _mm512_mul_pd(vz, vz)));
+    lo[0] = _mm512_min_pd(lo[0], vx), lo[1] = _mm512_min_pd(lo[1], vy);
+    lo[2] = _mm512_min_pd(lo[2], vz);
+    hi[0] = _mm512_max_pd(hi[0], vx), hi[1] = _mm512_max_pd(hi[1], vy);
+    hi[2] = _mm512_max_pd(hi[2], vz);
+  }
+  void mergeInto(VelocitySpread& spread) const {
+    VelocitySpread lanes;
+    lanes.speed2 = _mm512_reduce_max_pd(speed2);
+    for (int k = 0; k < 3; ++k)
+      lanes.lo[k] = _mm512_reduce_min_pd(lo[k]), lanes.hi[k] = _mm512_reduce_max_pd(hi[k]);
+    spread.merge(lanes);
+  }
+};
+
+// The kick-drift of the eight particles from `i` (all of them exist) on their forces f and
+// positions x still in registers, lane l particle i + l: the operations of driftOne per
+// coordinate, the velocities loaded and stored as 24 consecutive coordinates.
+inline void driftBlock(const DriftPass& d, std::size_t i, const __m512d f[3], const __m512d x[3],
+                       LaneSpread& spread) {
+  const __m512d h = _mm512_div_pd(_mm512_set1_pd(d.halfStep), _mm512_loadu_pd(d.m + i));
+  const __m512d dt = _mm512_set1_pd(d.dt);
+  __m512d v[3], xn[3], a[3];
+  transpose(_mm512_loadu_pd(d.v + 3 * i), _mm512_loadu_pd(d.v + 3 * i + kLanes),
+            _mm512_loadu_pd(d.v + 3 * i + 2 * kLanes), v[0], v[1], v[2]);
+  for (int k = 0; k < 3; ++k) {
+    if (d.pending)
+      v[k] = _mm512_fmadd_pd(h, f[k], v[k]);
+    v[k] = _mm512_add_pd(v[k], _mm512_mul_pd(h, f[k]));
+    xn[k] = _mm512_add_pd(x[k], _mm512_mul_pd(dt, v[k]));
+  }
+  spread.add(v[0], v[1], v[2]);
+  interleave(v[0], v[1], v[2], a);
+  for (int r = 0; r < 3; ++r)
+    _mm512_storeu_pd(d.v + 3 * i + kLanes * r, a[r]);
+  interleave(xn[0], xn[1], xn[2], a);
+  for (int r = 0; r < 3; ++r)
+    _mm512_storeu_pd(d.xOut + 3 * i + kLanes * r, a[r]);
+}
+
+} // namespace
+
 // The lane loop of the generic pass, operation for operation (see the header on the fused
-// multiply-adds).
-long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1) {
+// multiply-adds); with `d`, each full block's kick-drift (driftBlock) right after its forces, a
+// part-full last block's by driftAvx512 on the stored forces.
+template <bool kDrift> long passAvx512(const BlockPass& p, const DriftPass* d, std::size_t b0,
+                                       std::size_t b1, VelocitySpread* spread) {
   const double* x = p.x;
   const __m512d sigma2 = _mm512_set1_pd(p.terms.sigma2), rEq2 = _mm512_set1_pd(p.terms.rEq2);
   const __m512d kappa = _mm512_set1_pd(p.terms.kappa), rCut2 = _mm512_set1_pd(p.rCut2);
@@ -54,6 +139,7 @@ long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1) {
   const __m512d noBond = _mm512_set1_pd(kNoBond), breaking = _mm512_set1_pd(kBreaking);
   const __m256i laneIds = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   const __m256i last = _mm256_set1_epi32(static_cast<int>(p.n - 1));
+  LaneSpread lanes;
   long total = 0;
   for (std::size_t b = b0; b < b1; ++b) {
     const __m256i self = _mm256_min_epu32(
@@ -95,12 +181,24 @@ long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1) {
     }
     p.breaks[b] = broke;
     total += broke;
+    if (b * kLanes + kLanes <= p.n && !p.v) {
+      // A full block without the half kick here: its forces stored as 24 coordinates.
+      __m512d a[3];
+      interleave(fx, fy, fz, a);
+      for (int r = 0; r < 3; ++r)
+        _mm512_storeu_pd(p.force + 3 * b * kLanes + kLanes * r, a[r]);
+      if (kDrift) {
+        const __m512d fb[3] = {fx, fy, fz}, xb[3] = {xi, yi, zi};
+        driftBlock(*d, b * kLanes, fb, xb, lanes);
+      }
+      continue;
+    }
     alignas(64) double f[3][kLanes];
     _mm512_store_pd(f[0], fx);
     _mm512_store_pd(f[1], fy);
     _mm512_store_pd(f[2], fz);
-    const std::size_t lanes = std::min(kLanes, p.n - b * kLanes);
-    for (std::size_t l = 0; l < lanes; ++l) {
+    const std::size_t count = std::min(kLanes, p.n - b * kLanes);
+    for (std::size_t l = 0; l < count; ++l) {
       const std::size_t i = b * kLanes + l;
       for (int k = 0; k < 3; ++k)
         p.force[3 * i + k] = f[k][l];
@@ -110,8 +208,21 @@ long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1) {
           p.v[3 * i + k] = __builtin_fma(h, f[k][l], p.v[3 * i + k]);
       }
     }
+    if (kDrift)
+      driftAvx512(*d, b * kLanes, b * kLanes + count, *spread);
   }
+  if (kDrift)
+    lanes.mergeInto(*spread);
   return total;
+}
+
+long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1) {
+  return passAvx512<false>(p, nullptr, b0, b1, nullptr);
+}
+
+long blockForcesDriftAvx512(const BlockPass& p, const DriftPass& d, std::size_t b0, std::size_t b1,
+                            VelocitySpread& spread) {
+  return passAvx512<true>(p, &d, b0, b1, &spread);
 }
 
 namespace {
@@ -131,20 +242,6 @@ inline void driftOne(const DriftPass& p, std::size_t i, VelocitySpread& spread) 
     w[k] = v;
   }
   spread.add(w[0], w[1], w[2]);
-}
-
-// Eight particles' x, y and z from their 24 consecutive coordinates a0, a1, a2 (coordinate c at
-// lane c % 8 of a[c / 8]): coordinate k of particle l is c = 3 l + k.
-inline void transpose(__m512d a0, __m512d a1, __m512d a2, __m512d& x, __m512d& y, __m512d& z) {
-  const __m512i x01 = _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0),
-                x2 = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 10, 13);
-  const __m512i y01 = _mm512_setr_epi64(1, 4, 7, 10, 13, 0, 0, 0),
-                y2 = _mm512_setr_epi64(0, 1, 2, 3, 4, 8, 11, 14);
-  const __m512i z01 = _mm512_setr_epi64(2, 5, 8, 11, 14, 0, 0, 0),
-                z2 = _mm512_setr_epi64(0, 1, 2, 3, 4, 9, 12, 15);
-  x = _mm512_permutex2var_pd(_mm512_permutex2var_pd(a0, x01, a1), x2, a2);
-  y = _mm512_permutex2var_pd(_mm512_permutex2var_pd(a0, y01, a1), y2, a2);
-  z = _mm512_permutex2var_pd(_mm512_permutex2var_pd(a0, z01, a1), z2, a2);
 }
 
 } // namespace
@@ -240,6 +337,10 @@ void halfKickAvx512(const DriftPass& p, std::size_t i0, std::size_t i1) {
 bool avx512Available() { return false; }
 long blockForcesAvx512(const BlockPass&, std::size_t, std::size_t) { return 0; }
 void driftAvx512(const DriftPass&, std::size_t, std::size_t, VelocitySpread&) {}
+long blockForcesDriftAvx512(const BlockPass&, const DriftPass&, std::size_t, std::size_t,
+                            VelocitySpread&) {
+  return 0;
+}
 void halfKickAvx512(const DriftPass&, std::size_t, std::size_t) {}
 std::size_t nearCandidatesAvx512(const NearScan&, std::size_t, std::size_t, const double[3],
                                  std::uint32_t, std::uint32_t*) {

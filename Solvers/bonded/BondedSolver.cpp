@@ -286,6 +286,10 @@ void BondedSolver::computeForces(bool kick, bool driftNext) {
     for (long c = 0; c < chunks; ++c) {
       const std::size_t b0 = static_cast<std::size_t>(c) * kChunk,
                         b1 = std::min(blocks, (static_cast<std::size_t>(c) + 1) * kChunk);
+      if (driftNext && avx512) {
+        newlyBroken += bondedpass::blockForcesDriftAvx512(pass, drift, b0, b1, mine);
+        continue;
+      }
       newlyBroken += forces(pass, b0, b1);
       if (driftNext)
         kickDriftOf(drift, b0 * kLanes, std::min(n, b1 * kLanes), mine);

@@ -95,6 +95,55 @@ TEST(BondedForces, Avx512PassEqualsTheGenericPassBitForBit) {
   }
 }
 
+// The force pass with the kick-drift block by block (the solver's fused step) gives the bits of
+// the pass followed by the kick-drift over the same particles: forces, bond marks, velocities,
+// drifted positions and the velocities' spread, with and without the pending half kick, over
+// chunks that end inside the blocks' range and a part-full last block (1,003 particles).
+TEST(BondedForces, KickDriftBlockByBlockEqualsThePassThenTheKickDrift) {
+  if (!bondedpass::avx512Available())
+    GTEST_SKIP() << "this processor has no AVX-512: the fused pass does not run here";
+  const double sigma = ws2017::headlineSigma();
+  for (bool pending : {false, true}) {
+    PassData split = makePass(1003, 12, sigma, 11);
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> mass(0.5e-9, 2e-9); // particles of unequal masses
+    for (double& m : split.m)
+      m = mass(rng);
+    PassData fused = split;
+    const std::size_t n = split.m.size(), blocks = split.breaks.size();
+    std::vector<double> xSplit(3 * n), xFused(3 * n);
+    auto driftOf = [&](PassData& d, std::vector<double>& out) {
+      return bondedpass::DriftPass{d.x.data(), out.data(), d.v.data(), d.force.data(),
+                                   d.m.data(),  1e-10,      0.5e-10,   pending};
+    };
+    bondedpass::VelocitySpread spreadSplit, spreadFused;
+    long brokeSplit = 0, brokeFused = 0;
+    for (std::size_t b0 = 0; b0 < blocks; b0 += 40) { // chunks as the solver calls them
+      const std::size_t b1 = std::min(blocks, b0 + 40);
+      brokeSplit += bondedpass::blockForcesAvx512(passOf(split, sigma, false), b0, b1);
+      bondedpass::driftAvx512(driftOf(split, xSplit), 8 * b0, std::min(n, 8 * b1), spreadSplit);
+      brokeFused += bondedpass::blockForcesDriftAvx512(passOf(fused, sigma, false),
+                                                       driftOf(fused, xFused), b0, b1, spreadFused);
+    }
+    ASSERT_GT(brokeSplit, 0); // the case holds breaks
+    EXPECT_EQ(brokeFused, brokeSplit);
+    EXPECT_TRUE(sameBits(fused.force, split.force)) << "forces differ";
+    EXPECT_TRUE(sameBits(fused.rest, split.rest)) << "bond marks differ";
+    EXPECT_TRUE(sameBits(fused.breaks, split.breaks)) << "per-block break counts differ";
+    EXPECT_TRUE(sameBits(fused.v, split.v)) << "velocities differ";
+    EXPECT_TRUE(sameBits(xFused, xSplit)) << "drifted positions differ";
+    EXPECT_TRUE(sameBits(fused.x, split.x)) << "the current positions were written";
+    EXPECT_NE(xFused, fused.x); // the particles moved
+    const std::vector<double> a = {spreadFused.speed2, spreadFused.lo[0], spreadFused.lo[1],
+                                   spreadFused.lo[2],  spreadFused.hi[0], spreadFused.hi[1],
+                                   spreadFused.hi[2]},
+                              b = {spreadSplit.speed2, spreadSplit.lo[0], spreadSplit.lo[1],
+                                   spreadSplit.lo[2],  spreadSplit.hi[0], spreadSplit.hi[1],
+                                   spreadSplit.hi[2]};
+    EXPECT_TRUE(sameBits(a, b)) << "the velocities' spread differs";
+  }
+}
+
 // The rebuild's candidate test: the AVX-512 version lists the same particles as the generic one
 // and as a brute-force count, over ranges of every length modulo eight (the masked tails).
 TEST(BondedForces, Avx512CandidateTestListsTheBruteForceNeighbours) {
