@@ -10,7 +10,10 @@
 // the spring's pull subtracted from the repulsion, each force component accumulated, the half
 // kick), and its file is compiled with -ffp-contract=off so that no other operation is fused: on
 // a processor with AVX-512 both give the same bits (asserted by
-// BondedForces.Avx512PassEqualsTheGenericPassBitForBit), so runs do not depend on which ran.
+// BondedForces.Avx512PassEqualsTheGenericPassBitForBit), so runs do not depend on which ran. The
+// AVX-512 pass with the next step's kick-drift block by block (blockForcesDriftAvx512) gives the
+// bits of the pass followed by driftAvx512 (asserted by
+// BondedForces.KickDriftBlockByBlockEqualsThePassThenTheKickDrift).
 #pragma once
 
 #include "bonded/WatsonSteinhauser2017.h"
@@ -103,7 +106,8 @@ struct DriftPass {
 void driftAvx512(const DriftPass& p, std::size_t i0, std::size_t i1, VelocitySpread& spread);
 // blockForcesAvx512 over blocks [b0, b1) (p.v null) with the kick-drift of driftAvx512 over their
 // particles done block by block, on the block's forces and positions still in registers, into
-// d.xOut (d.f is p.force, d.x is p.x): the bits of the pass followed by driftAvx512, and the
+// d.xOut, which must not be p.x (d.f is p.force, d.x is p.x, p.v null: the half kick is the
+// drift's pending one): the bits of the pass followed by driftAvx512, and the
 // velocities and masses are streamed once, block by block. Only where avx512Available().
 long blockForcesDriftAvx512(const BlockPass& p, const DriftPass& d, std::size_t b0, std::size_t b1,
                             VelocitySpread& spread);

@@ -6,6 +6,7 @@
 #endif
 
 #include <algorithm>
+#include <cassert>
 
 namespace craterkit {
 namespace bondedpass {
@@ -40,10 +41,6 @@ inline void loadPositions(const double* x, __m256i ids, __m512d& px, __m512d& py
   py = _mm512_setr_pd(q[0][1], q[1][1], q[2][1], q[3][1], q[4][1], q[5][1], q[6][1], q[7][1]);
   pz = _mm512_setr_pd(q[0][2], q[1][2], q[2][2], q[3][2], q[4][2], q[5][2], q[6][2], q[7][2]);
 }
-
-} // namespace
-
-namespace {
 
 // Eight particles' 24 consecutive coordinates (coordinate k of particle l at lane (3 l + k) % 8 of
 // a[(3 l + k) / 8]) from their x, y and z: the inverse of transpose below.
@@ -124,8 +121,6 @@ inline void driftBlock(const DriftPass& d, std::size_t i, const __m512d f[3], co
     _mm512_storeu_pd(d.xOut + 3 * i + kLanes * r, a[r]);
 }
 
-} // namespace
-
 // The lane loop of the generic pass, operation for operation (see the header on the fused
 // multiply-adds); with `d`, each full block's kick-drift (driftBlock) right after its forces, a
 // part-full last block's by driftAvx512 on the stored forces.
@@ -187,7 +182,7 @@ template <bool kDrift> long passAvx512(const BlockPass& p, const DriftPass* d, s
       interleave(fx, fy, fz, a);
       for (int r = 0; r < 3; ++r)
         _mm512_storeu_pd(p.force + 3 * b * kLanes + kLanes * r, a[r]);
-      if (kDrift) {
+      if constexpr (kDrift) {
         const __m512d fb[3] = {fx, fy, fz}, xb[3] = {xi, yi, zi};
         driftBlock(*d, b * kLanes, fb, xb, lanes);
       }
@@ -208,13 +203,15 @@ template <bool kDrift> long passAvx512(const BlockPass& p, const DriftPass* d, s
           p.v[3 * i + k] = __builtin_fma(h, f[k][l], p.v[3 * i + k]);
       }
     }
-    if (kDrift)
+    if constexpr (kDrift)
       driftAvx512(*d, b * kLanes, b * kLanes + count, *spread);
   }
-  if (kDrift)
+  if constexpr (kDrift)
     lanes.mergeInto(*spread);
   return total;
 }
+
+} // namespace
 
 long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1) {
   return passAvx512<false>(p, nullptr, b0, b1, nullptr);
@@ -222,6 +219,9 @@ long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1) {
 
 long blockForcesDriftAvx512(const BlockPass& p, const DriftPass& d, std::size_t b0, std::size_t b1,
                             VelocitySpread& spread) {
+  // Full blocks take their positions and forces from the pass and drift into a buffer the pass
+  // does not read; the half kick is the drift's (p.v null), or it would be done twice.
+  assert(!p.v && d.x == p.x && d.f == p.force && d.xOut != p.x);
   return passAvx512<true>(p, &d, b0, b1, &spread);
 }
 
@@ -256,10 +256,7 @@ void driftAvx512(const DriftPass& p, std::size_t i0, std::size_t i1, VelocitySpr
   const __m512i h0 = _mm512_setr_epi64(0, 0, 0, 1, 1, 1, 2, 2),
                 h1 = _mm512_setr_epi64(2, 3, 3, 3, 4, 4, 4, 5),
                 h2 = _mm512_setr_epi64(5, 5, 6, 6, 6, 7, 7, 7);
-  __m512d speed2 = _mm512_setzero_pd();
-  __m512d lo[3], hi[3];
-  for (int k = 0; k < 3; ++k)
-    lo[k] = _mm512_set1_pd(kNoBond), hi[k] = _mm512_set1_pd(-kNoBond);
+  LaneSpread lanes;
   std::size_t i = i0;
   for (; i + kLanes <= i1; i += kLanes) {
     const __m512d h = _mm512_div_pd(halfStep, _mm512_loadu_pd(p.m + i));
@@ -279,21 +276,11 @@ void driftAvx512(const DriftPass& p, std::size_t i0, std::size_t i1, VelocitySpr
     }
     __m512d vx, vy, vz;
     transpose(w[0], w[1], w[2], vx, vy, vz);
-    speed2 = _mm512_max_pd(
-        speed2, _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(vx, vx), _mm512_mul_pd(vy, vy)),
-                              _mm512_mul_pd(vz, vz)));
-    lo[0] = _mm512_min_pd(lo[0], vx), lo[1] = _mm512_min_pd(lo[1], vy);
-    lo[2] = _mm512_min_pd(lo[2], vz);
-    hi[0] = _mm512_max_pd(hi[0], vx), hi[1] = _mm512_max_pd(hi[1], vy);
-    hi[2] = _mm512_max_pd(hi[2], vz);
+    lanes.add(vx, vy, vz);
   }
   for (; i < i1; ++i)
     driftOne(p, i, mine);
-  VelocitySpread lanes;
-  lanes.speed2 = _mm512_reduce_max_pd(speed2);
-  for (int k = 0; k < 3; ++k)
-    lanes.lo[k] = _mm512_reduce_min_pd(lo[k]), lanes.hi[k] = _mm512_reduce_max_pd(hi[k]);
-  mine.merge(lanes);
+  lanes.mergeInto(mine);
   spread = mine;
 }
 

@@ -259,8 +259,9 @@ void BondedSolver::computeForces(bool kick, bool driftNext) {
   pass.halfStep = 0.5 * dt_;
   pass.terms = {law.sigma * law.sigma, law.epsilon, law.kappa, law.rEq() * law.rEq()};
   pass.rCut2 = law.rCut * law.rCut;
-  // The next step's kick-drift, chunk by chunk once the chunk's forces are final, into the second
-  // position buffer: the pass reads every partner's position from the current one.
+  // The next step's kick-drift into the second position buffer (the pass reads every partner's
+  // position from the current one): block by block inside the AVX-512 pass, on the block's
+  // forces and positions still in registers; chunk by chunk after the generic pass.
   if (driftNext)
     nextX_.resize(3 * n);
   const bondedpass::DriftPass drift{sys_.positions.data(),
@@ -271,7 +272,6 @@ void BondedSolver::computeForces(bool kick, bool driftNext) {
                                     dt_,
                                     0.5 * dt_,
                                     kick && avx512};
-  const auto kickDriftOf = avx512 ? bondedpass::driftAvx512 : driftGeneric;
   constexpr std::size_t kChunk = 64; // blocks per call
   const long chunks = static_cast<long>((blocks + kChunk - 1) / kChunk);
   long newlyBroken = 0;
@@ -292,7 +292,7 @@ void BondedSolver::computeForces(bool kick, bool driftNext) {
       }
       newlyBroken += forces(pass, b0, b1);
       if (driftNext)
-        kickDriftOf(drift, b0 * kLanes, std::min(n, b1 * kLanes), mine);
+        driftGeneric(drift, b0 * kLanes, std::min(n, b1 * kLanes), mine);
     }
     if (driftNext) {
 #pragma omp critical

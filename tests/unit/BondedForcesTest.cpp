@@ -114,7 +114,7 @@ TEST(BondedForces, KickDriftBlockByBlockEqualsThePassThenTheKickDrift) {
     std::vector<double> xSplit(3 * n), xFused(3 * n);
     auto driftOf = [&](PassData& d, std::vector<double>& out) {
       return bondedpass::DriftPass{d.x.data(), out.data(), d.v.data(), d.force.data(),
-                                   d.m.data(),  1e-10,      0.5e-10,   pending};
+                                   d.m.data(), 1e-10,      0.5e-10,    pending};
     };
     bondedpass::VelocitySpread spreadSplit, spreadFused;
     long brokeSplit = 0, brokeFused = 0;
