@@ -8,6 +8,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -412,4 +413,64 @@ TEST(SphImpact, GradedTargetKeepsTheMassAndCoarsensOutwards) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("hemispherical"), std::string::npos) << e.what();
   }
+}
+
+// The Ryugu stage's graded targets (2 particles across the SCI impactor, 11.6 m, container):
+// the grading is a geometric progression, each shell 1 + dx/core = 1.25 times as thick as
+// the one inside it from the 4-radius core (0.15 m) on, up to the cap, and the shells below
+// each coarsening's cap are the same shells. So coarsening 8, 10 and 15 place the very same
+// particles within 1.40 m of the impact point (the end of the 7.45 dx shell, the last below
+// coarsening 8's cap), and differ only beyond: the coarsening refines only the region beyond
+// 1.40 m, not the one where the impactor is stopped (0.21 m deep at 1 ms; docs/validation.md,
+// "Depth and the SPH resolution").
+TEST(SphImpact, GradedTargetsOfDifferentCoarseningsShareTheirInnerShells) {
+  SphImpactSetup s = sciSetup();
+  s.particlesAcrossImpactor = 2;
+  s.targetRadius = 11.6;
+  s.container = true;
+  // The target's particles within `radius`, as (position, mass) rows in their order of placement.
+  auto within = [](const SphImpactProblem& p, double radius) {
+    std::vector<std::array<double, 4>> rows;
+    for (std::size_t i = p.impactorParticles; i < p.state.size(); ++i) {
+      const double* x = &p.state.x[3 * i];
+      if (std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) < radius)
+        rows.push_back({x[0], x[1], x[2], p.state.mass[i]});
+    }
+    return rows;
+  };
+  auto build = [&](double coarsening) {
+    s.coarsening = coarsening;
+    return buildImpact(s);
+  };
+  const SphImpactProblem p8 = build(8.0), p10 = build(10.0), p15 = build(15.0);
+  const auto c8 = within(p8, 1.40);
+  // The lattice core and ten shells of about 127 particles each (2π (r/t)² with t/r = 0.22
+  // along the grading): 1,410 particles.
+  EXPECT_GT(c8.size(), 1000u);
+  EXPECT_TRUE(c8 == within(p10, 1.40)) << "coarsening 8 and 10 differ within 1.40 m";
+  EXPECT_TRUE(c8 == within(p15, 1.40)) << "coarsening 8 and 15 differ within 1.40 m";
+  // Beyond, they differ: the next shell (from 1.40 m) is 8 dx thick at coarsening 8, 9.31 dx
+  // at 10.
+  EXPECT_FALSE(within(p8, 1.75) == within(p10, 1.75));
+  // Each shell's own spacing, (its volume share)^(1/3), from the core out: 1.25 times the one
+  // inside it until the cap, then the cap; no jump. 1 %: the rounding of a shell's particle
+  // count (at most half of the 126 of the first shell: 0.13 % in the spacing) and the thin-shell
+  // factor 1 + (t/r)²/12 of the exact shell volume (0.4 % in volume, constant along the
+  // grading).
+  const double dx = p10.spacing, core = 4.0 * p10.impactorRadius, rho = p10.targetBulkDensity;
+  std::vector<std::pair<double, double>> shells; // (radius, own spacing), one per shell
+  for (std::size_t i = p10.impactorParticles; i < p10.state.size(); ++i) {
+    const double* x = &p10.state.x[3 * i];
+    const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    if (r > core && p10.state.material[i] == 1 &&
+        (shells.empty() || r > shells.back().first * (1.0 + 1e-9)))
+      shells.emplace_back(r, std::cbrt(p10.state.mass[i] / rho));
+  }
+  ASSERT_GT(shells.size(), 12u);
+  EXPECT_NEAR(shells.front().second, dx, 0.01 * dx);
+  for (std::size_t k = 1; k < shells.size(); ++k) {
+    const double expected = std::min(10.0 * dx, shells[k - 1].second * (1.0 + dx / core));
+    EXPECT_NEAR(shells[k].second, expected, 0.01 * expected) << "shell at " << shells[k].first;
+  }
+  EXPECT_NEAR(shells.back().second, 10.0 * dx, 0.01 * dx);
 }
