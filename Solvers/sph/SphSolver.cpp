@@ -445,7 +445,10 @@ double SphSolver::computeRates(const SphState& s, const std::vector<double>& p,
 
 void SphSolver::restore(double time, std::size_t steps, double nextStep) {
   time_ = time, steps_ = steps;
-  if (!late_ && par_.lateStageTime >= 0.0 && time_ >= par_.lateStageTime)
+  // step() switches at the start of the step that begins at lateStageTime, so a state at
+  // that time (to its last bits: the clock summed the steps) is still the early stage's: the
+  // next step switches and scales its stress. A switched state is a whole step past it.
+  if (!late_ && par_.lateStageTime >= 0.0 && time_ > par_.lateStageTime * (1.0 + 1e-12))
     enterLateStage(false);
   if (nextStep > 0.0)
     stableStep_ = nextStep;

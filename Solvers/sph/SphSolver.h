@@ -42,7 +42,8 @@ public:
   void advanceTo(double t);
   double time() const { return time_; }
   // Sets the clock of a state restored from a snapshot or checkpoint.
-  // A state at or after the late-stage time already has the late stage's stress.
+  // A state after the late-stage time already has the late stage's stress; one at that time
+  // exactly (a checkpoint written where the run stopped for the switch) does not yet.
   void restore(double time, std::size_t steps, double nextStep);
   bool lateStage() const { return late_; }
   std::size_t steps() const { return steps_; }

@@ -224,6 +224,13 @@ int main(int argc, char** argv) {
                   "%.3f, dP/P0 = %.1e, dE/E0 = %.2e\n",
                   solver.time(), solver.steps(), solver.stableStep(), vmax, pmax, amin,
                   std::abs(P[2] - P0[2]) / std::abs(P0[2]), (solver.totalEnergy() - E0) / E0);
+      // Where the impactor (the first prob.impactorParticles) is: what sets the crater's
+      // depth in the graded Ryugu stage (docs/validation.md, "Depth and the SPH resolution").
+      double mi = 0.0, zc = 0.0, vc = 0.0;
+      for (std::size_t i = 0; i < prob.impactorParticles; ++i)
+        mi += s.mass[i], zc += s.mass[i] * s.x[3 * i + 2], vc += s.mass[i] * s.v[3 * i + 2];
+      std::printf("  impactor's centre of mass at z = %.4g m, moving at %.3g m/s along z\n",
+                  zc / mi, vc / mi);
       std::fflush(stdout);
       nextReport += end / 10.0;
     }

@@ -8,6 +8,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -177,6 +178,62 @@ TEST(SphImpact, CheckpointAndResumeContinueTheRun) {
   std::ofstream(path, std::ios::binary) << "not a checkpoint at all, just some text to fill bytes";
   EXPECT_THROW(SphRun(prob.state, prob.params).resumeFrom(path), InputError);
   std::filesystem::remove(path);
+}
+
+// A checkpoint written where a run stopped for the late-stage switch holds the early stage's
+// state (the switch comes at the start of the next step): resumed from it, the run switches
+// and scales the deviatoric stress as the run straight through does. Resumed as if already
+// switched (as before 2026-12-05), the copper kept its tens of MPa of deviatoric stress under a
+// shear modulus of 0.6 kPa, which threw the SCI impactor's particles out at up to 73 m/s
+// (docs/validation.md, "Depth and the SPH resolution"); here the states then differ by far
+// more than the tolerances below.
+TEST(SphImpact, ResumedAtTheLateStageSwitchScalesTheStressAsStraightThrough) {
+  SphImpactSetup setup = sciSetup();
+  setup.particlesAcrossImpactor = 3;
+  setup.targetRadius = 0.15;
+  SphImpactProblem prob = buildImpact(setup);
+  const double t1 = 2e-5, t2 = 4e-5;
+  prob.params.lateStageTime = t1;
+  prob.params.lateStageSoundSpeed = 10.0;
+  const std::string path = tempPath("sph_switch_checkpoint");
+  SphRun straight(prob.state, prob.params);
+  straight.advanceTo(t1);
+  double early = 0.0; // the impactor's largest deviatoric stress before the switch
+  for (std::size_t i = 0; i < 6 * prob.impactorParticles; ++i)
+    early = std::max(early, std::abs(straight.solver().state().S[i]));
+  EXPECT_FALSE(straight.solver().lateStage());
+  straight.advanceTo(t2);
+  {
+    SphRun first(prob.state, prob.params);
+    first.advanceTo(t1, {}, path, 1000000); // written at the switch time
+  }
+  SphRun resumed(prob.state, prob.params);
+  resumed.resumeFrom(path);
+  resumed.advanceTo(t2);
+  std::filesystem::remove(path);
+  const SphState& a = straight.solver().state();
+  const SphState& b = resumed.solver().state();
+  double dx = 0.0, dv = 0.0, dS = 0.0, late = 0.0;
+  for (std::size_t i = 0; i < a.x.size(); ++i) {
+    dx = std::max(dx, std::abs(a.x[i] - b.x[i]));
+    dv = std::max(dv, std::abs(a.v[i] - b.v[i]));
+  }
+  for (std::size_t i = 0; i < 6 * prob.impactorParticles; ++i) {
+    dS = std::max(dS, std::abs(a.S[i] - b.S[i]));
+    late = std::max(late, std::abs(a.S[i]));
+  }
+  std::printf("impactor's deviatoric stress: %.3g Pa before the switch, %.3g Pa after; resumed "
+              "against straight: max |dS| %.2e Pa, |dx| %.2e m, |dv| %.2e m/s\n",
+              early, late, dS, dx, dv);
+  EXPECT_GT(early, 1e6); // the shocked copper holds MPa of deviatoric stress
+  // Scaled at the switch (G from 46 GPa to 0.29 MPa here), then regrown at 2 G' times the
+  // strain rate over the 20 µs after it: strains of order 0.2 give about 0.1 MPa, against the
+  // tens of MPa it keeps unscaled.
+  EXPECT_LT(late, 0.01 * early);
+  // As CheckpointAndResumeContinueTheRun: the same up to the order of sums.
+  EXPECT_LT(dS, 1e-6 * early);
+  EXPECT_LT(dx, 1e-9);
+  EXPECT_LT(dv, 1e-6);
 }
 
 // The rigid container: a shell of the expected volume that never moves, and the far field's
@@ -412,4 +469,64 @@ TEST(SphImpact, GradedTargetKeepsTheMassAndCoarsensOutwards) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("hemispherical"), std::string::npos) << e.what();
   }
+}
+
+// The Ryugu stage's graded targets (2 particles across the SCI impactor, 11.6 m, container):
+// the grading is a geometric progression, each shell 1 + dx/core = 1.25 times as thick as
+// the one inside it from the 4-radius core (0.15 m) on, up to the cap, and the shells below
+// each coarsening's cap are the same shells. So coarsening 8, 10 and 15 place the very same
+// particles within 1.40 m of the impact point (the end of the 7.45 dx shell, the last below
+// coarsening 8's cap), and differ only beyond: the coarsening refines only the region beyond
+// 1.40 m, not the one where the impactor is stopped (0.21 m deep at 1 ms; docs/validation.md,
+// "Depth and the SPH resolution").
+TEST(SphImpact, GradedTargetsOfDifferentCoarseningsShareTheirInnerShells) {
+  SphImpactSetup s = sciSetup();
+  s.particlesAcrossImpactor = 2;
+  s.targetRadius = 11.6;
+  s.container = true;
+  // The target's particles within `radius`, as (position, mass) rows in their order of placement.
+  auto within = [](const SphImpactProblem& p, double radius) {
+    std::vector<std::array<double, 4>> rows;
+    for (std::size_t i = p.impactorParticles; i < p.state.size(); ++i) {
+      const double* x = &p.state.x[3 * i];
+      if (std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) < radius)
+        rows.push_back({x[0], x[1], x[2], p.state.mass[i]});
+    }
+    return rows;
+  };
+  auto build = [&](double coarsening) {
+    s.coarsening = coarsening;
+    return buildImpact(s);
+  };
+  const SphImpactProblem p8 = build(8.0), p10 = build(10.0), p15 = build(15.0);
+  const auto c8 = within(p8, 1.40);
+  // The lattice core and ten shells of about 127 particles each (2π (r/t)² with t/r = 0.22
+  // along the grading): 1,410 particles.
+  EXPECT_GT(c8.size(), 1000u);
+  EXPECT_TRUE(c8 == within(p10, 1.40)) << "coarsening 8 and 10 differ within 1.40 m";
+  EXPECT_TRUE(c8 == within(p15, 1.40)) << "coarsening 8 and 15 differ within 1.40 m";
+  // Beyond, they differ: the next shell (from 1.40 m) is 8 dx thick at coarsening 8, 9.31 dx
+  // at 10.
+  EXPECT_FALSE(within(p8, 1.75) == within(p10, 1.75));
+  // Each shell's own spacing, (its volume share)^(1/3), from the core out: 1.25 times the one
+  // inside it until the cap, then the cap; no jump. 1 %: the rounding of a shell's particle
+  // count (at most half of the 126 of the first shell: 0.13 % in the spacing) and the thin-shell
+  // factor 1 + (t/r)²/12 of the exact shell volume (0.4 % in volume, constant along the
+  // grading).
+  const double dx = p10.spacing, core = 4.0 * p10.impactorRadius, rho = p10.targetBulkDensity;
+  std::vector<std::pair<double, double>> shells; // (radius, own spacing), one per shell
+  for (std::size_t i = p10.impactorParticles; i < p10.state.size(); ++i) {
+    const double* x = &p10.state.x[3 * i];
+    const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    if (r > core && p10.state.material[i] == 1 &&
+        (shells.empty() || r > shells.back().first * (1.0 + 1e-9)))
+      shells.emplace_back(r, std::cbrt(p10.state.mass[i] / rho));
+  }
+  ASSERT_GT(shells.size(), 12u);
+  EXPECT_NEAR(shells.front().second, dx, 0.01 * dx);
+  for (std::size_t k = 1; k < shells.size(); ++k) {
+    const double expected = std::min(10.0 * dx, shells[k - 1].second * (1.0 + dx / core));
+    EXPECT_NEAR(shells[k].second, expected, 0.01 * expected) << "shell at " << shells[k].first;
+  }
+  EXPECT_NEAR(shells.back().second, 10.0 * dx, 0.01 * dx);
 }
