@@ -102,7 +102,7 @@ const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress
                        solver_->stableStep());
     checkpointReached(solver_->time());
   };
-  while (solver_->time() < time) {
+  while (!solver_->reached(time)) {
     const double dt = std::min(solver_->stableStep(), time - solver_->time());
     solver_->step(dt);
     // A state behind the file's (a request for an earlier time) never overwrites it.

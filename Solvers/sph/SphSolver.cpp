@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -445,10 +446,11 @@ double SphSolver::computeRates(const SphState& s, const std::vector<double>& p,
 
 void SphSolver::restore(double time, std::size_t steps, double nextStep) {
   time_ = time, steps_ = steps;
-  // step() switches at the start of the step that begins at lateStageTime, so a state at
-  // that time (to its last bits: the clock summed the steps) is still the early stage's: the
-  // next step switches and scales its stress. A switched state is a whole step past it.
-  if (!late_ && par_.lateStageTime >= 0.0 && time_ > par_.lateStageTime * (1.0 + 1e-12))
+  // step() switches at the start of the step that begins at lateStageTime, and the step cut
+  // to the switch ends on that time to the bit, so a state at it is still the early stage's
+  // (the next step switches and scales its stress) and every state after it is switched, however
+  // short the first late step was.
+  if (!late_ && par_.lateStageTime >= 0.0 && time_ > par_.lateStageTime)
     enterLateStage(false);
   if (nextStep > 0.0)
     stableStep_ = nextStep;
@@ -475,14 +477,17 @@ double SphSolver::step(double dt) {
     dt = stableStep_;
   if (late_ && par_.blockStepLevels > 0)
     return blockCycle(dt);
+  bool toSwitch = false;
   if (!late_ && par_.lateStageTime >= 0.0 && time_ + dt > par_.lateStageTime) {
     if (par_.lateStageTime - time_ <= 1e-9 * dt) {
       enterLateStage(true);
       dt = std::min(dt, stableStep_);
     } else {
       dt = par_.lateStageTime - time_; // the switch happens at its time exactly
+      toSwitch = true;
     }
   }
+  const double asked = dt;
   const std::size_t n = s_.size();
   const bool xs = par_.xsph > 0.0;
   // The predictor's state and rates live in members, so a step allocates nothing.
@@ -558,13 +563,23 @@ double SphSolver::step(double dt) {
   const double limit = limitStep(s_, k1_, signal);
   stableStep_ = std::min(limit, dt * std::max(grow, 1.0));
   record_.error = err, record_.worst = worst, record_.errorCapped = stableStep_ < limit;
-  time_ += dt;
+  // The step cut to the switch, taken whole, ends on its time to the bit (time_ + dt can round
+  // past it where time_ < lateStageTime / 2): restore() tells the two stages apart by the clock.
+  time_ = toSwitch && dt == asked ? par_.lateStageTime : time_ + dt;
   ++steps_;
   return dt;
 }
 
+bool SphSolver::reached(double t) const {
+  // A remainder within the clock's rounding (the steps' sum can end an ulp short of t, and an
+  // output time k × interval an ulp past the switch the run stopped at) or below the shortest
+  // step allowed is not a step: it would be refused as a collapsed time step.
+  const double slack = 4.0 * std::numeric_limits<double>::epsilon() * std::abs(t);
+  return t - time_ <= std::max(slack, par_.minTimeStep);
+}
+
 void SphSolver::advanceTo(double t) {
-  while (time_ < t) {
+  while (!reached(t)) {
     const double dt = std::min(stableStep_, t - time_);
     step(dt);
   }

@@ -41,6 +41,9 @@ public:
   double step(double dt = 0.0);
   void advanceTo(double t);
   double time() const { return time_; }
+  // Whether the clock stands at t: what is left is below the clock's rounding or the shortest
+  // step (advanceTo's and SphRun's loops end there).
+  bool reached(double t) const;
   // Sets the clock of a state restored from a snapshot or checkpoint.
   // A state after the late-stage time already has the late stage's stress; one at that time
   // exactly (a checkpoint written where the run stopped for the switch) does not yet.
