@@ -180,6 +180,17 @@ TEST(SphImpact, CheckpointAndResumeContinueTheRun) {
   std::filesystem::remove(path);
 }
 
+// A small SCI-like impact (3 particles across the impactor) switching to the late stage at t1.
+static SphImpactProblem switchingImpact(double t1) {
+  SphImpactSetup setup = sciSetup();
+  setup.particlesAcrossImpactor = 3;
+  setup.targetRadius = 0.15;
+  SphImpactProblem prob = buildImpact(setup);
+  prob.params.lateStageTime = t1;
+  prob.params.lateStageSoundSpeed = 10.0;
+  return prob;
+}
+
 // A checkpoint written where a run stopped for the late-stage switch holds the early stage's
 // state (the switch comes at the start of the next step): resumed from it, the run switches
 // and scales the deviatoric stress as the run straight through does. Resumed as if already
@@ -188,13 +199,8 @@ TEST(SphImpact, CheckpointAndResumeContinueTheRun) {
 // (docs/validation.md, "Depth and the SPH resolution"); here the states then differ by far
 // more than the tolerances below.
 TEST(SphImpact, ResumedAtTheLateStageSwitchScalesTheStressAsStraightThrough) {
-  SphImpactSetup setup = sciSetup();
-  setup.particlesAcrossImpactor = 3;
-  setup.targetRadius = 0.15;
-  SphImpactProblem prob = buildImpact(setup);
   const double t1 = 2e-5, t2 = 4e-5;
-  prob.params.lateStageTime = t1;
-  prob.params.lateStageSoundSpeed = 10.0;
+  SphImpactProblem prob = switchingImpact(t1);
   const std::string path = tempPath("sph_switch_checkpoint");
   SphRun straight(prob.state, prob.params);
   straight.advanceTo(t1);
@@ -245,13 +251,8 @@ TEST(SphImpact, ResumedAtTheLateStageSwitchScalesTheStressAsStraightThrough) {
 // 2026-12-05), the stress is scaled twice: the resumed impactor's stress then differs from the
 // straight run's by its once-scaled value, hundreds of Pa, against the tolerance below.
 TEST(SphImpact, ResumedJustAfterTheLateStageSwitchDoesNotScaleTheStressTwice) {
-  SphImpactSetup setup = sciSetup();
-  setup.particlesAcrossImpactor = 3;
-  setup.targetRadius = 0.15;
-  SphImpactProblem prob = buildImpact(setup);
   const double t1 = 2e-5, tJust = t1 * (1.0 + 1e-13), t2 = 4e-5;
-  prob.params.lateStageTime = t1;
-  prob.params.lateStageSoundSpeed = 10.0;
+  SphImpactProblem prob = switchingImpact(t1);
   const std::string path = tempPath("sph_just_after_switch");
   SphRun straight(prob.state, prob.params);
   straight.advanceTo(t1);
@@ -288,13 +289,8 @@ TEST(SphImpact, ResumedJustAfterTheLateStageSwitchDoesNotScaleTheStressTwice) {
 // Taking it, as the loops did before 2026-12-05, the time step "collapsed" below the shortest
 // allowed (the filter's MinTimeStep, 1e-12 s) and the run threw.
 TEST(SphImpact, AnOutputTimeAnUlpPastTheSwitchIsReachedWithoutACollapsedStep) {
-  SphImpactSetup setup = sciSetup();
-  setup.particlesAcrossImpactor = 3;
-  setup.targetRadius = 0.15;
-  SphImpactProblem prob = buildImpact(setup);
   const double t1 = 2e-5;
-  prob.params.lateStageTime = t1;
-  prob.params.lateStageSoundSpeed = 10.0;
+  SphImpactProblem prob = switchingImpact(t1);
   prob.params.minTimeStep = 1e-12;
   SphRun run(prob.state, prob.params);
   EXPECT_NO_THROW(run.advanceTo(std::nextafter(t1, 1.0)));
