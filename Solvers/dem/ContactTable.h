@@ -18,6 +18,7 @@
 
 #include "common/GrowFresh.h"
 #include "dem/ContactModels.h"
+#include "dem/PredictedRecord.h"
 
 #include <array>
 #include <cstddef>
@@ -57,9 +58,11 @@ struct ContactTable {
                        std::vector<std::uint32_t>& newRow);
 };
 
-// Particle data the contact law reads: positions, radii, masses, predicted velocities, spins.
+// Particle data the contact law reads: positions (three doubles a particle) and the records of
+// predicted velocity and spin, mass and radius (dem/PredictedRecord.h).
 struct ContactInputs {
-  const double *x, *r, *m, *v, *w;
+  const double* x;
+  const PredictedRecord* p;
 };
 
 // Evaluates rows [begin, end) of NOW: the geometry from the particles, the history from
