@@ -88,34 +88,30 @@ template <class Law> CK_ALWAYS_INLINE double evaluateRow(const Law& law, const F
                                                          const double* const* hb, double* const* hn,
                                                          double* res, std::size_t i, std::size_t j,
                                                          std::size_t b, std::size_t c) {
-  // The records as doubles, kW to a particle (dem/PredictedRecord.h): indexed loads as those of x.
-  constexpr std::size_t kW = sizeof(PredictedRecord) / sizeof(double);
-  const double* x = in.x;
-  const double* p = &in.p[0].v[0];
-  const double mi = p[kW * i + 6], mj = p[kW * j + 6], ri = p[kW * i + 7], rj = p[kW * j + 7];
+  const double *x = in.x, *r = in.r, *m = in.m, *v = in.v, *w = in.w;
   ContactLane l;
   const double rho[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1],
                          x[3 * j + 2] - x[3 * i + 2]};
-  const double d2 = dot3(rho, rho), sum = ri + rj;
+  const double d2 = dot3(rho, rho), sum = r[i] + r[j];
   const double d = std::sqrt(d2);
   for (int k = 0; k < 3; ++k)
     l.n[k] = rho[k] / d;
   l.overlap = sum - d;
-  l.leverP = (ri * ri - rj * rj + d2) / (2.0 * d);
+  l.leverP = (r[i] * r[i] - r[j] * r[j] + d2) / (2.0 * d);
   l.leverN = d - l.leverP;
-  const double wi[3] = {p[kW * i + 3], p[kW * i + 4], p[kW * i + 5]};
-  const double wj[3] = {p[kW * j + 3], p[kW * j + 4], p[kW * j + 5]};
+  const double wi[3] = {w[3 * i], w[3 * i + 1], w[3 * i + 2]};
+  const double wj[3] = {w[3 * j], w[3 * j + 1], w[3 * j + 2]};
   double ci[3], cj[3];
   cross3(l.n, wj, cj);
   cross3(l.n, wi, ci);
   // Surface velocities: p's contact point is at +l_p n from its centre, n's at -l_n n.
   for (int k = 0; k < 3; ++k) {
-    l.u[k] = ((p[kW * j + k] - p[kW * i + k]) + l.leverN * cj[k]) + l.leverP * ci[k];
+    l.u[k] = ((v[3 * j + k] - v[3 * i + k]) + l.leverN * cj[k]) + l.leverP * ci[k];
     l.omegaRel[k] = wj[k] - wi[k];
     l.omegaSum[k] = wi[k] + wj[k];
   }
-  l.reducedMass = mi * mj / (mi + mj);
-  l.reducedRadius = ri * rj / sum;
+  l.reducedMass = m[i] * m[j] / (m[i] + m[j]);
+  l.reducedRadius = r[i] * r[j] / sum;
   for (int k = 0; k < 3; ++k) {
     l.spring[k] = hb[k][b];
     l.rolling[k] = hb[3 + k][b];
@@ -132,7 +128,7 @@ template <class Law> CK_ALWAYS_INLINE double evaluateRow(const Law& law, const F
     res[ContactTable::kResultWords * c + 6 + k] = l.torqueN[k];
   }
   hn[6][c] = l.twisting;
-  return l.overlap / std::min(ri, rj);
+  return l.overlap / std::min(r[i], r[j]);
 }
 
 // The loop of evaluateContacts, compiled once per law and per instruction set.
@@ -149,11 +145,10 @@ CK_ALWAYS_INLINE double evaluateRows(const Law& law, const FrictionConstants& fc
   }
   double* res = now.result.data();
   const FrictionConstants f = fc; // a local copy: no store in the loop can change it
-  const ContactInputs p = in;     // (so for the particles' pointers)
   double worst = 0.0;
 #pragma omp simd reduction(max : worst)
   for (std::size_t c = begin; c < end; ++c)
-    worst = std::max(worst, evaluateRow(law, f, dt, p, hb, hn, res, pi[c], pj[c], from[c], c));
+    worst = std::max(worst, evaluateRow(law, f, dt, in, hb, hn, res, pi[c], pj[c], from[c], c));
   return worst;
 }
 

@@ -18,7 +18,6 @@
 
 #include "common/GrowFresh.h"
 #include "dem/ContactModels.h"
-#include "dem/PredictedRecord.h"
 
 #include <array>
 #include <cstddef>
@@ -58,11 +57,9 @@ struct ContactTable {
                        std::vector<std::uint32_t>& newRow);
 };
 
-// Particle data the contact law reads: positions (three doubles a particle) and the records of
-// predicted velocity and spin, mass and radius (dem/PredictedRecord.h).
+// Particle data the contact law reads: positions, radii, masses, predicted velocities, spins.
 struct ContactInputs {
-  const double* x;
-  const PredictedRecord* p;
+  const double *x, *r, *m, *v, *w;
 };
 
 // Evaluates rows [begin, end) of NOW: the geometry from the particles, the history from

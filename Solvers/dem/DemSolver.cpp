@@ -66,13 +66,8 @@ void DemSolver::initialise(bool computeInitialForces) {
     inertia_[i] = 0.4 * s.mass[i] * s.radius[i] * s.radius[i];
   acc_.assign(3 * n_, 0.0);
   alpha_.assign(3 * n_, 0.0);
-  pred_.resize(n_);
-  for (std::size_t i = 0; i < n_; ++i)
-    pred_[i] = PredictedRecord{
-        {s.velocity[3 * i], s.velocity[3 * i + 1], s.velocity[3 * i + 2]},
-        {s.angularVelocity[3 * i], s.angularVelocity[3 * i + 1], s.angularVelocity[3 * i + 2]},
-        s.mass[i],
-        s.radius[i]};
+  vPred_ = s.velocity;
+  wPred_ = s.angularVelocity;
   tables_[0].resize(0);
   tables_[1].resize(0);
   current_ = 0;
@@ -289,7 +284,8 @@ template <class Law> void DemSolver::forcePhasesWith(const Law& pairLaw, const L
   const double collected = collectContacts(lo, hi, &rowBegin, &rowEnd);
   const double evaluating = seconds();
   const FrictionConstants fc(params_.contact);
-  const ContactInputs in{state_.position.data(), pred_.data()};
+  const ContactInputs in{state_.position.data(), state_.radius.data(), state_.mass.data(),
+                         vPred_.data(), wPred_.data()};
   const double worst = evaluateContacts(pairLaw, fc, params_.dt, in, tables_[current_],
                                         tables_[1 - current_], rowBegin, rowEnd);
   chain_.post(me, chainStage_ + 3);
@@ -322,7 +318,8 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
   const double dt = params_.dt;
   const ParticleSet& s = state_;
   const double* x = s.position.data();
-  const PredictedRecord* p = pred_.data();
+  const double* r = s.radius.data();
+  const double* m = s.mass.data();
   const double* res = tables_[1 - current_].result.data();
   constexpr std::size_t R = ContactTable::kResultWords;
   const ParticleContacts& pc = contactsOf_;
@@ -348,7 +345,7 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
     }
     for (std::size_t e = wc.start[i]; e < wc.start[i + 1]; ++e) {
       double nv[3], lever;
-      const double overlap = params_.walls[wc.wall[e]].overlap(&x[3 * i], p[i].r, nv, lever);
+      const double overlap = params_.walls[wc.wall[e]].overlap(&x[3 * i], r[i], nv, lever);
       ContactHistory& h = wc.history[e];
       if (!(overlap > 0.0)) {
         if (wc.active[e]) {
@@ -362,22 +359,22 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
       st.overlap = overlap;
       st.leverP = lever;
       st.leverN = kInf;
-      const Vec wi(p[i].w[0], p[i].w[1], p[i].w[2]);
-      st.u = -Vec(p[i].v[0], p[i].v[1], p[i].v[2]) + st.leverP * st.n.cross(wi);
+      const Vec wi = at(wPred_, i);
+      st.u = -at(vPred_, i) + st.leverP * st.n.cross(wi);
       st.omegaRel = -wi;
       st.omegaSum = wi;
-      st.reducedMass = p[i].m;
-      st.reducedRadius = p[i].r;
+      st.reducedMass = m[i];
+      st.reducedRadius = r[i];
       const ContactResult out = ssdemContact(wallLaw, cp, fc, st, h, dt);
       f += out.force;
       t += out.torqueP;
       wc.active[e] = 1;
-      worst = std::max(worst, overlap / p[i].r);
+      worst = std::max(worst, overlap / r[i]);
     }
     double g[3] = {gravity.vector[0], gravity.vector[1], gravity.vector[2]}, a[3], b[3];
     if (!uniform) // the common case needs no call
       gravity.acceleration(&x[3 * i], g);
-    sphereAccelerations(f.data(), t.data(), p[i].m, inertia_[i], g, a, b);
+    sphereAccelerations(f.data(), t.data(), m[i], inertia_[i], g, a, b);
     moved = std::max(moved, finishParticle(i, a, b, kick, openNext));
   }
 #pragma omp critical(ck_dem_worst)
@@ -404,8 +401,8 @@ inline double DemSolver::driftParticle(std::size_t i, const double* a, const dou
     x[k] += dt * v[k];
     const double d = x[k] - refPos_[3 * i + k];
     d2 += d * d;
-    pred_[i].v[k] = v[k] + h * a[k];
-    pred_[i].w[k] = w[k] + h * b[k];
+    vPred_[3 * i + k] = v[k] + h * a[k];
+    wPred_[3 * i + k] = w[k] + h * b[k];
   }
   return d2;
 }
@@ -574,7 +571,8 @@ std::size_t DemSolver::removeParticles(const std::vector<char>& remove) {
   compact(inertia_, 1);
   compact(acc_, 3);
   compact(alpha_, 3);
-  compact(pred_, 1);
+  compact(vPred_, 3);
+  compact(wPred_, 3);
   // Renumber the contacts and pairs; the map is increasing, so the lists stay sorted.
   std::vector<std::uint32_t> newRow;
   tables_[current_].removeParticles(remove, newIndex, newRow);

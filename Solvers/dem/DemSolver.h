@@ -163,8 +163,7 @@ private:
   long long step_ = 0;
   double skin_ = 0.0, rmax_ = 0.0, collisionTime_ = 0.0;
   double dampingFactorN_ = 0.0; // of the clipped normal law (clippedDampingFactor)
-  std::vector<double> inertia_, acc_, alpha_, refPos_;
-  std::vector<PredictedRecord> pred_; // predicted velocity and spin, mass, radius
+  std::vector<double> inertia_, acc_, alpha_, vPred_, wPred_, refPos_;
 
   PairList pairs_;         // half Verlet list: particles, contact flags, table rows
   ContactTable tables_[2]; // the contacts of the last force evaluation, and the next
