@@ -91,9 +91,8 @@ const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress
   goBackTo(
       time, solver_->time(), [&] { return std::make_unique<SphSolver>(initial_, params_); },
       [&](const SphKeptState& kept) {
-        auto solver = std::make_unique<SphSolver>(kept.state, params_);
-        solver->restore(kept.time, kept.steps, kept.nextStep);
-        return solver;
+        return std::make_unique<SphSolver>(kept.state, params_,
+                                           SphClock{kept.time, kept.steps, kept.nextStep});
       });
   const double from = solver_->time();
   std::size_t lastCheckpoint = solver_->steps();
@@ -133,9 +132,7 @@ void SphRun::resumeFrom(const std::string& checkpointPath) {
     if (m < 0 || static_cast<std::size_t>(m) >= params_.materials.size())
       throw InputError(checkpointPath +
                        ": the checkpoint names a material this set-up does not have");
-  auto solver = std::make_unique<SphSolver>(s, params_);
-  solver->restore(t, steps, next);
-  resumed(std::move(solver), t);
+  resumed(std::make_unique<SphSolver>(s, params_, SphClock{t, steps, next}), t);
 }
 
 } // namespace craterkit

@@ -16,7 +16,8 @@
 
 namespace craterkit {
 
-SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(initial), par_(params) {
+SphSolver::SphSolver(const SphState& initial, const SphParams& params, const SphClock& clock)
+    : s_(initial), par_(params) {
   par_.validate();
   for (std::size_t m = 0; m < par_.materials.size(); ++m) {
     Material& mat = par_.materials[m];
@@ -49,10 +50,17 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params) : s_(init
   for (std::size_t i = 0; i < n; ++i)
     s_.h[i] = smoothingLength(s_, i);
   fracture_.assignFlaws(s_, par_.materials, par_.fractureSeed);
+  time_ = clock.time, steps_ = clock.steps;
+  // Switched before the first settle: with the early stage's law, settle() would read the late
+  // stage's small strains as gigapascals, compact the pores (α) for good and clip the stress.
+  if (par_.lateStageTime >= 0.0 && time_ > par_.lateStageTime) {
+    switchMaterials();
+    late_ = true;
+  }
   nb_.build(s_, par_, k1_.dx, 0.0, false);
   settle(s_, p_, c_);
   const double signal = computeRates(s_, p_, c_, k1_);
-  stableStep_ = limitStep(s_, k1_, signal);
+  stableStep_ = clock.nextStep > 0.0 ? clock.nextStep : limitStep(s_, k1_, signal);
 }
 
 void SphSolver::imageShift(std::uint32_t code, double d[3]) const {
@@ -444,28 +452,20 @@ double SphSolver::computeRates(const SphState& s, const std::vector<double>& p,
                          : rates<CubicSpline, false>(s, p, c, r, active);
 }
 
-void SphSolver::restore(double time, std::size_t steps, double nextStep) {
-  time_ = time, steps_ = steps;
-  // step() switches at the start of the step that begins at lateStageTime, and the step cut
-  // to the switch ends on that time to the bit, so a state at it is still the early stage's
-  // (the next step switches and scales its stress) and every state after it is switched, however
-  // short the first late step was.
-  if (!late_ && par_.lateStageTime >= 0.0 && time_ > par_.lateStageTime)
-    enterLateStage(false);
-  if (nextStep > 0.0)
-    stableStep_ = nextStep;
-}
-
-void SphSolver::enterLateStage(bool scaleStress) {
+std::vector<double> SphSolver::switchMaterials() {
   std::vector<double> scale(par_.materials.size(), 1.0);
   for (std::size_t m = 0; m < par_.materials.size(); ++m)
     scale[m] = par_.materials[m].switchToLateStage(par_.lateStageSoundSpeed);
-  if (scaleStress)
-    for (std::size_t i = 0; i < s_.size(); ++i) {
-      const double f = scale[static_cast<std::size_t>(s_.material[i])];
-      for (int k = 0; k < 6; ++k)
-        s_.S[6 * i + k] *= f;
-    }
+  return scale;
+}
+
+void SphSolver::enterLateStage() {
+  const std::vector<double> scale = switchMaterials();
+  for (std::size_t i = 0; i < s_.size(); ++i) {
+    const double f = scale[static_cast<std::size_t>(s_.material[i])];
+    for (int k = 0; k < 6; ++k)
+      s_.S[6 * i + k] *= f;
+  }
   late_ = true;
   settle(s_, p_, c_);
   const double signal = computeRates(s_, p_, c_, k1_);
@@ -480,7 +480,7 @@ double SphSolver::step(double dt) {
   bool toSwitch = false;
   if (!late_ && par_.lateStageTime >= 0.0 && time_ + dt > par_.lateStageTime) {
     if (par_.lateStageTime - time_ <= 1e-9 * dt) {
-      enterLateStage(true);
+      enterLateStage();
       dt = std::min(dt, stableStep_);
     } else {
       dt = par_.lateStageTime - time_; // the switch happens at its time exactly
@@ -564,7 +564,8 @@ double SphSolver::step(double dt) {
   stableStep_ = std::min(limit, dt * std::max(grow, 1.0));
   record_.error = err, record_.worst = worst, record_.errorCapped = stableStep_ < limit;
   // The step cut to the switch, taken whole, ends on its time to the bit (time_ + dt can round
-  // past it where time_ < lateStageTime / 2): restore() tells the two stages apart by the clock.
+  // past it where time_ < lateStageTime / 2): a restored solver tells the stages apart by the
+  // clock.
   time_ = toSwitch && dt == asked ? par_.lateStageTime : time_ + dt;
   ++steps_;
   return dt;

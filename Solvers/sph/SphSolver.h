@@ -33,9 +33,21 @@
 
 namespace craterkit {
 
+// Where a state restored from a snapshot or checkpoint stands: its time, its step count and
+// the step the run would have taken next (0: the solver's own stable step).
+struct SphClock {
+  double time = 0.0;
+  std::size_t steps = 0;
+  double nextStep = 0.0;
+};
+
 class SphSolver {
 public:
-  SphSolver(const SphState& initial, const SphParams& params);
+  // A state after the late-stage time (clock.time > SphParams::lateStageTime) is the late
+  // stage's: its materials are switched before the state is first settled, and its stress is
+  // not scaled again. One at that time exactly (a checkpoint written where the run stopped for
+  // the switch) is still the early stage's: the next step switches and scales it.
+  SphSolver(const SphState& initial, const SphParams& params, const SphClock& clock = {});
   // One Heun step of at most dt (0: the stable step); returns the step taken, shorter than
   // asked when the error control needs it.
   double step(double dt = 0.0);
@@ -44,10 +56,6 @@ public:
   // Whether the clock stands at t: what is left is below the clock's rounding or the shortest
   // step (advanceTo's and SphRun's loops end there).
   bool reached(double t) const;
-  // Sets the clock of a state restored from a snapshot or checkpoint.
-  // A state after the late-stage time already has the late stage's stress; one at that time
-  // exactly (a checkpoint written where the run stopped for the switch) does not yet.
-  void restore(double time, std::size_t steps, double nextStep);
   bool lateStage() const { return late_; }
   std::size_t steps() const { return steps_; }
   std::size_t neighbourBuilds() const { return nb_.builds(); }       // neighbour lists built so far
@@ -105,9 +113,10 @@ private:
     std::vector<double> dx, dv, drho, du, dS; // dx: the XSPH correction (empty when off)
     DamageRates damage;                       // Grady–Kipp (empty when no particle has flaws)
   };
-  // Switches the materials to the late-stage equations of state (scaling each particle's
-  // deviatoric stress when `scaleStress`), then recomputes the current state's rates.
-  void enterLateStage(bool scaleStress);
+  // Switches the materials to the late-stage equations of state and scales each particle's
+  // deviatoric stress, then recomputes the current state's rates.
+  void enterLateStage();
+  std::vector<double> switchMaterials(); // to the late stage; returns each material's G'/G
   // Positions into the periodic box, h from ρ, ρ by summation when asked, then pressure and
   // sound speed into p and c and the yield limit on the deviatoric stress.
   // With `need`, the walls' pressure only where need[i] != 0 (block steps).

@@ -186,9 +186,7 @@ int main(int argc, char** argv) {
   std::size_t steps0 = 0;
   if (resume)
     prob.state = readSphCheckpoint(resume, t0Resume, steps0, nextStep);
-  SphSolver solver(prob.state, prob.params);
-  if (resume)
-    solver.restore(t0Resume, steps0, nextStep);
+  SphSolver solver(prob.state, prob.params, SphClock{t0Resume, steps0, nextStep});
   const std::size_t n = prob.state.size();
   std::printf(
       "SCI-like SPH: %zu particles (%zu impactor), dx = %.4g m, %d threads, to t = %.3g s\n", n,
