@@ -336,8 +336,8 @@ TEST(SphImpact, ALateStageStateIsRestoredWithItsPoresAndPressure) {
   ahead.advanceTo(tBack);
   double dAlpha = 0.0;
   for (std::size_t i = 0; i < a.state().size(); ++i)
-    dAlpha = std::max(dAlpha, std::abs(back.solver().state().alpha[i] -
-                                       ahead.solver().state().alpha[i]));
+    dAlpha = std::max(dAlpha,
+                      std::abs(back.solver().state().alpha[i] - ahead.solver().state().alpha[i]));
   std::printf("back from a kept late-stage snapshot: max |dα| %.2e\n", dAlpha);
   EXPECT_LT(dAlpha, 1e-9); // the old order compacted every porous particle far beyond this
 }
