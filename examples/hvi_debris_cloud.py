@@ -19,6 +19,7 @@ import sys
 import time
 
 from craterkit import fetch, field_value, load_plugin, print_progress
+from craterkit.cross_section import show_point_spheres
 from craterkit.report import write_report
 
 # What the paper states in its text (figures give the rest only as plots).
@@ -67,16 +68,10 @@ def render_side_view(simple, source, data, filename, width, label):
     view.ViewTime = field_value(data, "Time")  # the view renders its own time, not the last update
     capped = simple.Calculator(Input=source, ResultArrayName="Fragment",
                                Function="min(FragmentId, 15)")
-    # Point splats shaded as spheres of the particles' radius (one size: the model's particles
-    # share σ), not sphere glyphs: the same picture, without some 17 kB of triangles a particle
-    # (14 GB at the paper's 7.4e5 particles; benchmarks/README.md, the headline run).
-    display = simple.Show(capped, view)
-    display.SetRepresentationType("Point Gaussian")
-    display.ShaderPreset = "Sphere"
-    display.GaussianRadius = data.GetPointData().GetArray("Radius").GetRange()[1]
-    simple.ColorBy(display, ("POINTS", "Fragment"))
-    lut = simple.GetColorTransferFunction("Fragment")
-    lut.ApplyPreset("Turbo", True)
+    # Splats, not sphere glyphs (the model's particles share σ): glyphs took 14 GB at the paper's
+    # 7.4e5 particles (benchmarks/README.md, the headline run).
+    radius = data.GetPointData().GetArray("Radius").GetRange()[1]
+    display, lut = show_point_spheres(simple, capped, view, "Fragment", "Turbo", radius)
     lut.RescaleTransferFunction(0.0, 15.0)
     display.SetScalarBarVisibility(view, True)
     bar = simple.GetScalarBar(lut, view)

@@ -185,7 +185,22 @@ def show_spheres(simple, source, view, color_by, preset, resolution=None):
     spheres.ScaleFactor = 1.0
     spheres.GlyphMode = "All Points"
     spheres.OrientationArray = ["POINTS", "No orientation array"]
-    display = simple.Show(spheres, view)
+    return _colored(simple, simple.Show(spheres, view), color_by, preset)
+
+
+def show_point_spheres(simple, source, view, color_by, preset, radius):
+    """Shows SOURCE's particles in VIEW as point splats shaded as spheres of one RADIUS (Point
+    Gaussian), coloured as show_spheres does: the same picture for particles of one size, without
+    a glyph's triangles (some 17 kB a particle). Returns the display and the colour transfer
+    function."""
+    display = simple.Show(source, view)
+    display.SetRepresentationType("Point Gaussian")
+    display.ShaderPreset = "Sphere"
+    display.GaussianRadius = radius
+    return _colored(simple, display, color_by, preset)
+
+
+def _colored(simple, display, color_by, preset):
     simple.ColorBy(display, ("POINTS", color_by))
     lut = simple.GetColorTransferFunction(color_by)
     lut.ApplyPreset(preset, True)
