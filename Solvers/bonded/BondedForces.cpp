@@ -7,14 +7,16 @@
 namespace craterkit {
 namespace bondedpass {
 
-// Cloned (sph/SimdClones.h) for x86-64-v4, whose clone's operations BondedForcesAvx512.cpp
-// repeats; where the processor has x86-64-v4 and the build has that file (GCC 12+), the
-// solver runs it instead. The clone serves builds without it.
-CK_SIMD_CLONES long blockForces(const BlockPass& p, std::size_t b0, std::size_t b1) {
+namespace {
+
+// The pass over the wide (kCompact false) or the compact lists; inlined into each clone of
+// blockForces, so that it is compiled for the clone's target.
+template <bool kCompact> __attribute__((always_inline)) inline long
+passOf(const BlockPass& p, std::size_t b0, std::size_t b1) {
   constexpr std::size_t L = kLanes;
   const double* x = p.x;
   const ws2017::PairTerms terms = p.terms;
-  const double rCut2 = p.rCut2;
+  const double rCut2 = p.rCut2, restRef = p.restRef;
   long total = 0;
   for (std::size_t b = b0; b < b1; ++b) {
     double xi[L], yi[L], zi[L], fx[L], fy[L], fz[L];
@@ -26,17 +28,22 @@ CK_SIMD_CLONES long blockForces(const BlockPass& p, std::size_t b0, std::size_t 
     std::uint32_t broke = 0;
     for (std::size_t e = p.blockStart[b]; e < p.blockStart[b + 1]; e += L) {
       const std::uint32_t* J = p.partner + e;
-      double* R0 = p.rest + e;
+      double* R0 = kCompact ? nullptr : p.rest + e;
+      float* O = kCompact ? p.offset + e : nullptr;
 #pragma omp simd reduction(+ : broke)
       for (std::size_t l = 0; l < L; ++l) {
         const std::size_t j = J[l];
         const double dx = xi[l] - x[3 * j], dy = yi[l] - x[3 * j + 1], dz = zi[l] - x[3 * j + 2];
         const double r2 = dx * dx + dy * dy + dz * dz;
-        const double r0 = R0[l];
+        const double r0 = kCompact ? restRef + static_cast<double>(O[l]) : R0[l];
         const bool breaks = (r0 < kNoBond) & (r2 > rCut2); // Section 2.2.2: for good
         const double f = ws2017::pairForceOverR(r2, breaks ? kNoBond : r0, terms);
-        if (breaks)
-          R0[l] = kBreaking;
+        if (breaks) {
+          if constexpr (kCompact)
+            O[l] = kBreakingOffset;
+          else
+            R0[l] = kBreaking;
+        }
         broke += breaks;
         fx[l] += f * dx;
         fy[l] += f * dy;
@@ -58,6 +65,15 @@ CK_SIMD_CLONES long blockForces(const BlockPass& p, std::size_t b0, std::size_t 
     }
   }
   return total;
+}
+
+} // namespace
+
+// Cloned (sph/SimdClones.h) for x86-64-v4, whose clone's operations BondedForcesAvx512.cpp
+// repeats; where the processor has x86-64-v4 and the build has that file (GCC 12+), the
+// solver runs it instead. The clone serves builds without it.
+CK_SIMD_CLONES long blockForces(const BlockPass& p, std::size_t b0, std::size_t b1) {
+  return p.rest ? passOf<false>(p, b0, b1) : passOf<true>(p, b0, b1);
 }
 
 std::size_t nearCandidates(const NearScan& s, std::size_t begin, std::size_t end,

@@ -30,16 +30,25 @@ namespace bondedpass {
 // List entries' rest lengths: no intact bond; a bond the current pass found beyond r_cut.
 constexpr double kNoBond = std::numeric_limits<double>::infinity();
 constexpr double kBreaking = -1.0;
+// The same in the compact lists' 4-byte offsets (BlockPass::offset): +∞ decodes to kNoBond; −∞
+// marks a break (never decoded: the solver books and clears the marks after each pass).
+constexpr float kNoBondOffset = std::numeric_limits<float>::infinity();
+constexpr float kBreakingOffset = -std::numeric_limits<float>::infinity();
 constexpr std::size_t kLanes = 8;
 
 // One force pass over blocks of kLanes particles: block b's entries are [blockStart[b],
-// blockStart[b + 1]), entry k of its lane l at blockStart[b] + k kLanes + l.
+// blockStart[b + 1]), entry k of its lane l at blockStart[b] + k kLanes + l. Each entry's rest
+// length is either the double rest[e] (the wide lists) or, where rest is null, restRef +
+// offset[e] (the compact lists, 8 bytes an entry in place of 12), one rounded addition in both
+// passes; the solver uses the compact lists where that sum is every bond's rest length exactly.
 struct BlockPass {
   const double* x;
   std::size_t n;
   const std::size_t* blockStart;
   const std::uint32_t* partner;
-  double* rest;
+  double* rest;   // null: the compact lists
+  float* offset;  // the compact lists' rest lengths less restRef
+  double restRef; // the compact lists' reference rest length
   std::uint32_t* breaks;
   double* force;
   double* v; // null: forces only; else the second half kick too
@@ -51,9 +60,9 @@ struct BlockPass {
 
 // The forces on the particles of blocks [b0, b1): eight particles side by side, each lane
 // summing its particle's entries in list order. An intact bond beyond r_cut is marked
-// kBreaking, contributes its repulsion only, and is counted in its block (p.breaks); the half
-// kick too if p.v. Returns the number of bonds found beyond r_cut. Runs anywhere; its AVX-512
-// clone differs from the plain code by rounding.
+// kBreaking (kBreakingOffset in the compact lists), contributes its repulsion only, and is counted
+// in its block (p.breaks); the half kick too if p.v. Returns the number of bonds found beyond
+// r_cut. Runs anywhere; its AVX-512 clone differs from the plain code by rounding.
 long blockForces(const BlockPass& p, std::size_t b0, std::size_t b1);
 // Whether this processor runs blockForcesAvx512 (the x86-64-v4 level: AVX-512 F, CD, BW, DQ, VL).
 bool avx512Available();

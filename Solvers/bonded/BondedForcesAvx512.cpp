@@ -122,16 +122,20 @@ inline void driftBlock(const DriftPass& d, std::size_t i, const __m512d f[3], co
 }
 
 // The lane loop of the generic pass, operation for operation (see the header on the fused
-// multiply-adds); with `d`, each full block's kick-drift (driftBlock) right after its forces, a
-// part-full last block's by driftAvx512 on the stored forces.
-template <bool kDrift> long passAvx512(const BlockPass& p, const DriftPass* d, std::size_t b0,
-                                       std::size_t b1, VelocitySpread* spread) {
+// multiply-adds), over the wide or (kCompact) the compact lists; with `d`, each full block's
+// kick-drift (driftBlock) right after its forces, a part-full last block's by driftAvx512 on the
+// stored forces.
+template <bool kDrift, bool kCompact> long passAvx512(const BlockPass& p, const DriftPass* d,
+                                                      std::size_t b0, std::size_t b1,
+                                                      VelocitySpread* spread) {
   const double* x = p.x;
   const __m512d sigma2 = _mm512_set1_pd(p.terms.sigma2), rEq2 = _mm512_set1_pd(p.terms.rEq2);
   const __m512d kappa = _mm512_set1_pd(p.terms.kappa), rCut2 = _mm512_set1_pd(p.rCut2);
   const __m512d c24 = _mm512_set1_pd(24.0 * p.terms.epsilon);
   const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0), two = _mm512_set1_pd(2.0);
   const __m512d noBond = _mm512_set1_pd(kNoBond), breaking = _mm512_set1_pd(kBreaking);
+  const __m512d restRef = _mm512_set1_pd(p.restRef);
+  const __m256 breakingOffset = _mm256_set1_ps(kBreakingOffset);
   const __m256i laneIds = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   const __m256i last = _mm256_set1_epi32(static_cast<int>(p.n - 1));
   LaneSpread lanes;
@@ -150,11 +154,17 @@ template <bool kDrift> long passAvx512(const BlockPass& p, const DriftPass* d, s
       const __m512d dx = _mm512_sub_pd(xi, xj), dy = _mm512_sub_pd(yi, yj),
                     dz = _mm512_sub_pd(zi, zj);
       const __m512d r2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
-      const __m512d r0 = _mm512_loadu_pd(p.rest + e);
+      // r0 = restRef + offset (exact, converted from float) in the compact lists.
+      const __m512d r0 =
+          kCompact ? _mm512_add_pd(restRef, _mm512_cvtps_pd(_mm256_loadu_ps(p.offset + e)))
+                   : _mm512_loadu_pd(p.rest + e);
       const __mmask8 breaks = _mm512_cmp_pd_mask(r0, noBond, _CMP_LT_OQ) &
                               _mm512_cmp_pd_mask(r2, rCut2, _CMP_GT_OQ); // for good
       if (breaks) {
-        _mm512_mask_storeu_pd(p.rest + e, breaks, breaking);
+        if constexpr (kCompact)
+          _mm256_mask_storeu_ps(p.offset + e, breaks, breakingOffset);
+        else
+          _mm512_mask_storeu_pd(p.rest + e, breaks, breaking);
         broke += static_cast<std::uint32_t>(__builtin_popcount(breaks));
       }
       const __m512d r0e = _mm512_mask_blend_pd(breaks, r0, noBond);
@@ -214,7 +224,8 @@ template <bool kDrift> long passAvx512(const BlockPass& p, const DriftPass* d, s
 } // namespace
 
 long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1) {
-  return passAvx512<false>(p, nullptr, b0, b1, nullptr);
+  return p.rest ? passAvx512<false, false>(p, nullptr, b0, b1, nullptr)
+                : passAvx512<false, true>(p, nullptr, b0, b1, nullptr);
 }
 
 long blockForcesDriftAvx512(const BlockPass& p, const DriftPass& d, std::size_t b0, std::size_t b1,
@@ -222,7 +233,8 @@ long blockForcesDriftAvx512(const BlockPass& p, const DriftPass& d, std::size_t 
   // Full blocks take their positions and forces from the pass and drift into a buffer the pass
   // does not read; the half kick is the drift's (p.v null), or it would be done twice.
   assert(!p.v && d.x == p.x && d.f == p.force && d.xOut != p.x);
-  return passAvx512<true>(p, &d, b0, b1, &spread);
+  return p.rest ? passAvx512<true, false>(p, &d, b0, b1, &spread)
+                : passAvx512<true, true>(p, &d, b0, b1, &spread);
 }
 
 namespace {

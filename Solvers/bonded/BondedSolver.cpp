@@ -54,7 +54,9 @@ template <class F> double chunkedSum(std::size_t n, F&& f) {
 
 using bondedpass::BlockPass;
 using bondedpass::kBreaking;
+using bondedpass::kBreakingOffset;
 using bondedpass::kNoBond;
+using bondedpass::kNoBondOffset;
 
 constexpr char kMagic[8] = {'C', 'K', 'B', 'O', 'N', 'D', '0', '1'};
 
@@ -126,6 +128,13 @@ void BondedSolver::prepare() {
     bondsOf_[fill[sys_.bonds[b].i]++] = static_cast<std::uint32_t>(b);
     bondsOf_[fill[sys_.bonds[b].j]++] = static_cast<std::uint32_t>(b);
   }
+  // The compact lists where r_eq + (float)(r0 − r_eq) is every bond's r0 exactly (the same bits
+  // in the pass, so the same run), else the wide ones: on the lattice r0 − r_eq is a few ulps.
+  restRef_ = sys_.law.rEq();
+  compact_ = std::all_of(sys_.bonds.begin(), sys_.bonds.end(), [&](const BondedBond& b) {
+    const float d = static_cast<float>(b.rest - restRef_);
+    return std::isfinite(d) && restRef_ + static_cast<double>(d) == b.rest;
+  });
   buildPairs();
 }
 
@@ -218,7 +227,8 @@ void BondedSolver::buildPairs() {
   for (std::size_t b = 0; b < blocks; ++b)
     blockStart_[b + 1] += blockStart_[b];
   partner_.resize(blockStart_[blocks]);
-  rest_.resize(blockStart_[blocks]);
+  offset_.resize(compact_ ? blockStart_[blocks] : 0);
+  rest_.resize(compact_ ? 0 : blockStart_[blocks]);
 #pragma omp parallel for schedule(dynamic)
   for (long c = 0; c < nc; ++c) {
     const std::size_t b0 = static_cast<std::size_t>(c) * kChunkBlocks;
@@ -228,7 +238,11 @@ void BondedSolver::buildPairs() {
         const std::size_t listed = i < n ? count[i] : 0, self = std::min(n - 1, i);
         for (std::size_t e = blockStart_[b] + l, k = 0; e < blockStart_[b + 1]; e += kLanes, ++k) {
           partner_[e] = k < listed ? from[k].first : static_cast<std::uint32_t>(self);
-          rest_[e] = k < listed ? from[k].second : kNoBond;
+          const double r0 = k < listed ? from[k].second : kNoBond;
+          if (compact_) // exact (prepare)
+            offset_[e] = r0 < kNoBond ? static_cast<float>(r0 - restRef_) : kNoBondOffset;
+          else
+            rest_[e] = r0;
         }
         from += listed;
       }
@@ -247,7 +261,9 @@ void BondedSolver::computeForces(bool kick, bool driftNext) {
   pass.n = n;
   pass.blockStart = blockStart_.data();
   pass.partner = partner_.data();
-  pass.rest = rest_.data();
+  pass.rest = compact_ ? nullptr : rest_.data();
+  pass.offset = compact_ ? offset_.data() : nullptr;
+  pass.restRef = restRef_;
   pass.breaks = blockBreaks_.data();
   pass.force = force_.data();
   const bool avx512 = avx512_;
@@ -319,9 +335,12 @@ void BondedSolver::bookBreaks() {
       continue;
     blockBreaks_[b] = 0;
     for (std::size_t e = blockStart_[b]; e < blockStart_[b + 1]; ++e) {
-      if (rest_[e] != kBreaking)
+      if (compact_ ? offset_[e] != kBreakingOffset : rest_[e] != kBreaking)
         continue;
-      rest_[e] = kNoBond;
+      if (compact_)
+        offset_[e] = kNoBondOffset;
+      else
+        rest_[e] = kNoBond;
       const std::size_t i = b * kLanes + (e - blockStart_[b]) % kLanes, j = partner_[e];
       if (i >= j || i >= n)
         continue;

@@ -13,15 +13,17 @@
 // measured displacements (BondedListTrigger), so that the fastest fragments do not set the bound
 // of particles that move with their neighbours) together with its bonded partners however far,
 // each entry carrying the rest length of its
-// intact bond (or none). One entry gives the pair's repulsion (closer than r_eq) and spring
-// (stretched bond) at once (ws2017::pairForceOverR), and each pair is computed twice, once from
-// each side, with exactly opposite results. The lists are stored in blocks of eight particles,
-// entry k of the eight particles side by side (padded with the particle itself, which contributes
-// nothing), so that the pass runs eight particles per SIMD instruction with every particle's own
-// sum in its own lane, in the order of its list. Each step, after the drift, a bond longer than
-// r_cut is broken for good by both its particles' passes alike (the squared distance has the same
-// bits from either side); its spring energy is booked as dissipated (so that kinetic + repulsive +
-// bond + dissipated energy is what the integrator conserves).
+// intact bond (or none): on the lattice these are r_eq to rounding, stored as 4-byte float
+// offsets from r_eq where every bond's rest length is that sum exactly (else as doubles). One entry
+// gives the pair's repulsion (closer than r_eq) and spring (stretched bond) at once
+// (ws2017::pairForceOverR), and each pair is computed twice, once from each side, with exactly
+// opposite results. The lists are stored in blocks of eight particles, entry k of the eight
+// particles side by side (padded with the particle itself, which contributes nothing), so that the
+// pass runs eight particles per SIMD instruction with every particle's own sum in its own lane, in
+// the order of its list. Each step, after the drift, a bond longer than r_cut is broken for good by
+// both its particles' passes alike (the squared distance has the same bits from either side); its
+// spring energy is booked as dissipated (so that kinetic + repulsive + bond + dissipated energy is
+// what the integrator conserves).
 //
 // Where the AVX-512 passes run, the second half kick of a step is left to the next step's
 // kick-drift (which streams v, f and m anyway) with the operation the force pass would have done,
@@ -93,6 +95,8 @@ public:
   const BondedSystem& system() const { return sys_; }
   const std::vector<std::uint8_t>& bondBroken() const { return bondBroken_; }
   const std::vector<double>& forces() const { return force_; }
+  // Whether the pair lists hold the rest lengths as 4-byte offsets from r_eq (else as doubles).
+  bool compactLists() const { return compact_; }
   // Runs the generic passes even where the AVX-512 ones could (both give the same bits there).
   void useGenericPasses() { avx512_ = false; }
 
@@ -139,8 +143,14 @@ private:
   // blockStart_[b + 1]), entry k of its lane l at blockStart_[b] + k kLanes + l.
   static constexpr std::size_t kLanes = 8;
   std::vector<std::size_t> blockStart_;
-  std::vector<std::uint32_t> partner_;     // the other particle (the particle itself: padding)
-  std::vector<double> rest_;               // rest length of the pair's intact bond, or +∞
+  std::vector<std::uint32_t> partner_; // the other particle (the particle itself: padding)
+  // Each entry's rest length of the pair's intact bond, or +∞: where every bond's rest length
+  // is r_eq plus a float offset exactly (the lattice's bonds, r_eq to rounding), the compact
+  // lists hold the offsets (4 bytes an entry, +∞ for none; compact_, rest_ empty); else rest_.
+  std::vector<float> offset_;
+  std::vector<double> rest_;
+  double restRef_ = 0.0; // r_eq, the offsets' reference
+  bool compact_ = false;
   std::vector<std::uint32_t> blockBreaks_; // bonds broken in the last pass, per block
   // The rebuild's buffers: the cell list with a copy of the positions in its order, each chunk's
   // staged (partner, rest) lists and each particle's list length.

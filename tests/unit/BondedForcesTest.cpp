@@ -19,9 +19,13 @@ namespace {
 // A pass over n particles in a box of 2σ (partners 1.3σ apart on average), each lane with `depth`
 // listed partners: a third without a bond, the rest bonded with rest lengths around r_eq, so that
 // some bonds sit beyond r_cut (they break) and some partners are closer than r_eq (repulsion). The
-// last block is part full (n not a multiple of eight), as in the solver.
+// last block is part full (n not a multiple of eight), as in the solver. The rest lengths are held
+// both ways: as doubles (the wide lists) and as float offsets from r_eq (the compact lists), each
+// double the sum r_eq + offset the compact pass forms, so that both describe the same lists.
 struct PassData {
   std::vector<double> x, rest, force, v, m;
+  std::vector<float> offset;
+  double restRef = 0.0;
   std::vector<std::size_t> blockStart;
   std::vector<std::uint32_t> partner, breaks;
 };
@@ -39,22 +43,28 @@ PassData makePass(std::size_t n, std::size_t depth, double sigma, unsigned seed)
   for (std::size_t b = 0; b <= blocks; ++b)
     d.blockStart.push_back(b * depth * kLanes);
   const double rEq = ws2017::kTwoToOneSixth * sigma;
+  d.restRef = rEq;
   for (std::size_t e = 0; e < blocks * depth * kLanes; ++e) {
     d.partner.push_back(pick(rng));
-    d.rest.push_back(e % 3 == 0 ? bondedpass::kNoBond : rel(rng) * rEq);
+    const float offset =
+        e % 3 == 0 ? bondedpass::kNoBondOffset : static_cast<float>((rel(rng) - 1.0) * rEq);
+    d.offset.push_back(offset);
+    d.rest.push_back(rEq + static_cast<double>(offset)); // +∞ where unbonded
   }
   d.breaks.assign(blocks, 0);
   d.force.assign(3 * n, 0.0);
   return d;
 }
 
-bondedpass::BlockPass passOf(PassData& d, double sigma, bool kick) {
+bondedpass::BlockPass passOf(PassData& d, double sigma, bool kick, bool compact) {
   bondedpass::BlockPass p;
   p.x = d.x.data();
   p.n = d.x.size() / 3;
   p.blockStart = d.blockStart.data();
   p.partner = d.partner.data();
-  p.rest = d.rest.data();
+  p.rest = compact ? nullptr : d.rest.data();
+  p.offset = compact ? d.offset.data() : nullptr;
+  p.restRef = d.restRef;
   p.breaks = d.breaks.data();
   p.force = d.force.data();
   p.v = kick ? d.v.data() : nullptr;
@@ -76,22 +86,50 @@ TEST(BondedForces, Avx512PassEqualsTheGenericPassBitForBit) {
   if (!bondedpass::avx512Available())
     GTEST_SKIP() << "this processor has no AVX-512: only the generic pass runs here";
   const double sigma = ws2017::headlineSigma();
-  for (bool kick : {false, true}) {
-    PassData generic = makePass(1003, 12, sigma, 7), wide = generic; // a third of entries unbonded
-    const std::size_t blocks = generic.breaks.size();
-    const long brokeGeneric = bondedpass::blockForces(passOf(generic, sigma, kick), 0, blocks);
-    const long brokeWide = bondedpass::blockForcesAvx512(passOf(wide, sigma, kick), 0, blocks);
-    std::printf("kick %d: %ld bonds beyond r_cut of %zu entries\n", kick, brokeGeneric,
-                generic.rest.size());
-    // The case must hold breaks and intact bonds, or it tests less than it claims.
-    const long bonded = static_cast<long>(2 * generic.rest.size() / 3);
-    ASSERT_GT(brokeGeneric, 0);
-    ASSERT_LT(brokeGeneric, bonded);
-    EXPECT_EQ(brokeWide, brokeGeneric);
-    EXPECT_TRUE(sameBits(wide.force, generic.force)) << "forces differ";
-    EXPECT_TRUE(sameBits(wide.rest, generic.rest)) << "bond marks differ";
-    EXPECT_TRUE(sameBits(wide.breaks, generic.breaks)) << "per-block break counts differ";
-    EXPECT_TRUE(sameBits(wide.v, generic.v)) << "half kicks differ";
+  for (bool compact : {false, true})
+    for (bool kick : {false, true}) {
+      PassData generic = makePass(1003, 12, sigma, 7), wide = generic; // a third unbonded
+      const std::size_t blocks = generic.breaks.size();
+      const long brokeGeneric =
+          bondedpass::blockForces(passOf(generic, sigma, kick, compact), 0, blocks);
+      const long brokeWide =
+          bondedpass::blockForcesAvx512(passOf(wide, sigma, kick, compact), 0, blocks);
+      std::printf("compact %d, kick %d: %ld bonds beyond r_cut of %zu entries\n", compact, kick,
+                  brokeGeneric, generic.rest.size());
+      // The case must hold breaks and intact bonds, or it tests less than it claims.
+      const long bonded = static_cast<long>(2 * generic.rest.size() / 3);
+      ASSERT_GT(brokeGeneric, 0);
+      ASSERT_LT(brokeGeneric, bonded);
+      EXPECT_EQ(brokeWide, brokeGeneric);
+      EXPECT_TRUE(sameBits(wide.force, generic.force)) << "forces differ";
+      EXPECT_TRUE(sameBits(wide.rest, generic.rest)) << "bond marks differ";
+      EXPECT_TRUE(sameBits(wide.offset, generic.offset)) << "bond marks differ (compact)";
+      EXPECT_TRUE(sameBits(wide.breaks, generic.breaks)) << "per-block break counts differ";
+      EXPECT_TRUE(sameBits(wide.v, generic.v)) << "half kicks differ";
+    }
+}
+
+// The compact lists (rest lengths as float offsets from r_eq) give the bits of the wide lists
+// holding the same rest lengths as doubles, and mark the same bonds, in both passes.
+TEST(BondedForces, CompactListsEqualTheWideListsBitForBit) {
+  const double sigma = ws2017::headlineSigma();
+  for (bool avx512 : {false, true}) {
+    if (avx512 && !bondedpass::avx512Available())
+      continue;
+    const auto pass = avx512 ? bondedpass::blockForcesAvx512 : bondedpass::blockForces;
+    PassData wide = makePass(1003, 12, sigma, 5), compact = wide;
+    const std::size_t blocks = wide.breaks.size();
+    const long brokeWide = pass(passOf(wide, sigma, true, false), 0, blocks);
+    const long brokeCompact = pass(passOf(compact, sigma, true, true), 0, blocks);
+    ASSERT_GT(brokeWide, 0); // the case holds breaks
+    EXPECT_EQ(brokeCompact, brokeWide);
+    EXPECT_TRUE(sameBits(compact.force, wide.force)) << "forces differ";
+    EXPECT_TRUE(sameBits(compact.v, wide.v)) << "half kicks differ";
+    EXPECT_TRUE(sameBits(compact.breaks, wide.breaks)) << "per-block break counts differ";
+    for (std::size_t e = 0; e < wide.rest.size(); ++e)
+      ASSERT_EQ(compact.offset[e] == bondedpass::kBreakingOffset,
+                wide.rest[e] == bondedpass::kBreaking)
+          << "entry " << e << " marked in one list only";
   }
 }
 
@@ -103,45 +141,47 @@ TEST(BondedForces, KickDriftBlockByBlockEqualsThePassThenTheKickDrift) {
   if (!bondedpass::avx512Available())
     GTEST_SKIP() << "this processor has no AVX-512: the fused pass does not run here";
   const double sigma = ws2017::headlineSigma();
-  for (bool pending : {false, true}) {
-    PassData split = makePass(1003, 12, sigma, 11);
-    std::mt19937_64 rng(3);
-    std::uniform_real_distribution<double> mass(0.5e-9, 2e-9); // particles of unequal masses
-    for (double& m : split.m)
-      m = mass(rng);
-    PassData fused = split;
-    const std::size_t n = split.m.size(), blocks = split.breaks.size();
-    std::vector<double> xSplit(3 * n), xFused(3 * n);
-    auto driftOf = [&](PassData& d, std::vector<double>& out) {
-      return bondedpass::DriftPass{d.x.data(), out.data(), d.v.data(), d.force.data(),
-                                   d.m.data(), 1e-10,      0.5e-10,    pending};
-    };
-    bondedpass::VelocitySpread spreadSplit, spreadFused;
-    long brokeSplit = 0, brokeFused = 0;
-    for (std::size_t b0 = 0; b0 < blocks; b0 += 40) { // chunks as the solver calls them
-      const std::size_t b1 = std::min(blocks, b0 + 40);
-      brokeSplit += bondedpass::blockForcesAvx512(passOf(split, sigma, false), b0, b1);
-      bondedpass::driftAvx512(driftOf(split, xSplit), 8 * b0, std::min(n, 8 * b1), spreadSplit);
-      brokeFused += bondedpass::blockForcesDriftAvx512(passOf(fused, sigma, false),
-                                                       driftOf(fused, xFused), b0, b1, spreadFused);
+  for (bool compact : {false, true})
+    for (bool pending : {false, true}) {
+      PassData split = makePass(1003, 12, sigma, 11);
+      std::mt19937_64 rng(3);
+      std::uniform_real_distribution<double> mass(0.5e-9, 2e-9); // particles of unequal masses
+      for (double& m : split.m)
+        m = mass(rng);
+      PassData fused = split;
+      const std::size_t n = split.m.size(), blocks = split.breaks.size();
+      std::vector<double> xSplit(3 * n), xFused(3 * n);
+      auto driftOf = [&](PassData& d, std::vector<double>& out) {
+        return bondedpass::DriftPass{d.x.data(), out.data(), d.v.data(), d.force.data(),
+                                     d.m.data(), 1e-10,      0.5e-10,    pending};
+      };
+      bondedpass::VelocitySpread spreadSplit, spreadFused;
+      long brokeSplit = 0, brokeFused = 0;
+      for (std::size_t b0 = 0; b0 < blocks; b0 += 40) { // chunks as the solver calls them
+        const std::size_t b1 = std::min(blocks, b0 + 40);
+        brokeSplit += bondedpass::blockForcesAvx512(passOf(split, sigma, false, compact), b0, b1);
+        bondedpass::driftAvx512(driftOf(split, xSplit), 8 * b0, std::min(n, 8 * b1), spreadSplit);
+        brokeFused += bondedpass::blockForcesDriftAvx512(
+            passOf(fused, sigma, false, compact), driftOf(fused, xFused), b0, b1, spreadFused);
+      }
+      ASSERT_GT(brokeSplit, 0); // the case holds breaks
+      EXPECT_EQ(brokeFused, brokeSplit);
+      EXPECT_TRUE(sameBits(fused.force, split.force)) << "forces differ";
+      EXPECT_TRUE(sameBits(fused.rest, split.rest)) << "bond marks differ";
+      EXPECT_TRUE(sameBits(fused.offset, split.offset)) << "bond marks differ (compact)";
+      EXPECT_TRUE(sameBits(fused.breaks, split.breaks)) << "per-block break counts differ";
+      EXPECT_TRUE(sameBits(fused.v, split.v)) << "velocities differ";
+      EXPECT_TRUE(sameBits(xFused, xSplit)) << "drifted positions differ";
+      EXPECT_TRUE(sameBits(fused.x, split.x)) << "the current positions were written";
+      EXPECT_NE(xFused, fused.x); // the particles moved
+      const std::vector<double> a = {spreadFused.speed2, spreadFused.lo[0], spreadFused.lo[1],
+                                     spreadFused.lo[2],  spreadFused.hi[0], spreadFused.hi[1],
+                                     spreadFused.hi[2]},
+                                b = {spreadSplit.speed2, spreadSplit.lo[0], spreadSplit.lo[1],
+                                     spreadSplit.lo[2],  spreadSplit.hi[0], spreadSplit.hi[1],
+                                     spreadSplit.hi[2]};
+      EXPECT_TRUE(sameBits(a, b)) << "the velocities' spread differs";
     }
-    ASSERT_GT(brokeSplit, 0); // the case holds breaks
-    EXPECT_EQ(brokeFused, brokeSplit);
-    EXPECT_TRUE(sameBits(fused.force, split.force)) << "forces differ";
-    EXPECT_TRUE(sameBits(fused.rest, split.rest)) << "bond marks differ";
-    EXPECT_TRUE(sameBits(fused.breaks, split.breaks)) << "per-block break counts differ";
-    EXPECT_TRUE(sameBits(fused.v, split.v)) << "velocities differ";
-    EXPECT_TRUE(sameBits(xFused, xSplit)) << "drifted positions differ";
-    EXPECT_TRUE(sameBits(fused.x, split.x)) << "the current positions were written";
-    EXPECT_NE(xFused, fused.x); // the particles moved
-    const std::vector<double> a = {spreadFused.speed2, spreadFused.lo[0], spreadFused.lo[1],
-                                   spreadFused.lo[2],  spreadFused.hi[0], spreadFused.hi[1],
-                                   spreadFused.hi[2]},
-                              b = {spreadSplit.speed2, spreadSplit.lo[0], spreadSplit.lo[1],
-                                   spreadSplit.lo[2],  spreadSplit.hi[0], spreadSplit.hi[1],
-                                   spreadSplit.hi[2]};
-    EXPECT_TRUE(sameBits(a, b)) << "the velocities' spread differs";
-  }
 }
 
 // The rebuild's candidate test: the AVX-512 version lists the same particles as the generic one

@@ -322,6 +322,33 @@ TEST(BondedImpact, ForcesEqualAllPairsSumThroughAnImpact) {
   EXPECT_LT(worst, 1.0);
 }
 
+// The solver keeps each bond's rest length in its pair lists as a 4-byte float offset from r_eq
+// where that holds every rest length exactly (the lattice's nearest neighbours, r_eq to
+// rounding), and as doubles otherwise: with r_cut = 1.7 σ the lattice's diagonal neighbours at
+// √2 r_eq = 1.59 σ are bonded too, at rest lengths no float offset from r_eq holds. Both lists
+// must give every pair that acts (the allowance of the test above) through an impact.
+TEST(BondedImpact, ForcesEqualAllPairsSumWithCompactAndWideLists) {
+  for (double cutoff : {1.5, 1.7}) {
+    BondedImpactParams p = smallImpact(6700.0, 800);
+    p.rCutOverSigma = cutoff;
+    BondedSolver solver(buildBondedImpact(p));
+    const std::size_t bonds = solver.system().bonds.size();
+    double worst = 0.0;
+    for (int step = 1; step <= 1500; ++step) {
+      solver.step();
+      if (step % 25 == 0)
+        worst = std::max(worst, worstForceDifference(solver));
+    }
+    std::printf("[bonded] r_cut %.1f sigma: %zu bonds (%.2f a particle), compact lists %d, %zu "
+                "broken, worst difference %.2f of the rounding allowed\n",
+                cutoff, bonds, static_cast<double>(bonds) / solver.system().size(),
+                solver.compactLists(), solver.brokenBonds(), worst);
+    EXPECT_EQ(solver.compactLists(), cutoff < 1.59); // diagonal bonds: the wide lists
+    EXPECT_GT(solver.brokenBonds(), 0u);
+    EXPECT_LT(worst, 1.0);
+  }
+}
+
 // The same on a cloud spread thousands of reaches wide and mostly empty (the late debris cloud,
 // where the dense grid's cells would be many reaches wide): the impact plus pairs of free
 // particles far out, closer than r_eq so that they push apart; 1 and 2 threads, the same bits.
