@@ -67,7 +67,8 @@ long blockForces(const BlockPass& p, std::size_t b0, std::size_t b1);
 // Whether this processor runs blockForcesAvx512 (the x86-64-v4 level: AVX-512 F, CD, BW, DQ, VL).
 bool avx512Available();
 // The forces on the particles of blocks [b0, b1) (and the half kick if p.v): returns the number
-// of bonds found beyond r_cut, marked kBreaking and counted per block in p.breaks. Only where
+// of bonds found beyond r_cut, marked kBreaking (kBreakingOffset in the compact lists) and
+// counted per block in p.breaks. Only where
 // avx512Available().
 long blockForcesAvx512(const BlockPass& p, std::size_t b0, std::size_t b1);
 

@@ -129,13 +129,26 @@ void BondedSolver::prepare() {
     bondsOf_[fill[sys_.bonds[b].j]++] = static_cast<std::uint32_t>(b);
   }
   // The compact lists where r_eq + (float)(r0 − r_eq) is every bond's r0 exactly (the same bits
-  // in the pass, so the same run), else the wide ones: on the lattice r0 − r_eq is a few ulps.
+  // in the pass, so the same run), else the wide ones: for the lattice's nearest neighbours
+  // r0 − r_eq is a few ulps. (A difference beyond the float range is not converted at all.)
   restRef_ = sys_.law.rEq();
   compact_ = std::all_of(sys_.bonds.begin(), sys_.bonds.end(), [&](const BondedBond& b) {
+    if (!(std::abs(b.rest - restRef_) <= std::numeric_limits<float>::max()))
+      return false;
     const float d = static_cast<float>(b.rest - restRef_);
     return std::isfinite(d) && restRef_ + static_cast<double>(d) == b.rest;
   });
   buildPairs();
+}
+
+void BondedSolver::useWideLists() {
+  if (!compact_)
+    return;
+  rest_.resize(offset_.size());
+  for (std::size_t e = 0; e < offset_.size(); ++e) // no break is marked between steps
+    rest_[e] = offset_[e] == kNoBondOffset ? kNoBond : restRef_ + static_cast<double>(offset_[e]);
+  std::vector<float>().swap(offset_);
+  compact_ = false;
 }
 
 // Each particle's list: every particle within r_eq + skin and every intact bonded partner,

@@ -13,8 +13,9 @@
 // measured displacements (BondedListTrigger), so that the fastest fragments do not set the bound
 // of particles that move with their neighbours) together with its bonded partners however far,
 // each entry carrying the rest length of its
-// intact bond (or none): on the lattice these are r_eq to rounding, stored as 4-byte float
-// offsets from r_eq where every bond's rest length is that sum exactly (else as doubles). One entry
+// intact bond (or none): on the lattice the nearest neighbours' are r_eq to rounding, stored as
+// 4-byte float offsets from r_eq where every bond's rest length is that sum exactly (else, e.g.
+// with r_cut above √2 r_eq, where the diagonal neighbours are bonded too, as doubles). One entry
 // gives the pair's repulsion (closer than r_eq) and spring (stretched bond) at once
 // (ws2017::pairForceOverR), and each pair is computed twice, once from each side, with exactly
 // opposite results. The lists are stored in blocks of eight particles, entry k of the eight
@@ -99,6 +100,9 @@ public:
   bool compactLists() const { return compact_; }
   // Runs the generic passes even where the AVX-512 ones could (both give the same bits there).
   void useGenericPasses() { avx512_ = false; }
+  // Holds the rest lengths as doubles from now on even where the compact lists could (both give
+  // the same bits there); between steps.
+  void useWideLists();
 
   // Whole state, through writeFileAtomically; readCheckpoint gives a bit-identical run.
   void writeCheckpoint(const std::string& path) const;
@@ -145,7 +149,7 @@ private:
   std::vector<std::size_t> blockStart_;
   std::vector<std::uint32_t> partner_; // the other particle (the particle itself: padding)
   // Each entry's rest length of the pair's intact bond, or +∞: where every bond's rest length
-  // is r_eq plus a float offset exactly (the lattice's bonds, r_eq to rounding), the compact
+  // is r_eq plus a float offset exactly (the lattice's nearest neighbours), the compact
   // lists hold the offsets (4 bytes an entry, +∞ for none; compact_, rest_ empty); else rest_.
   std::vector<float> offset_;
   std::vector<double> rest_;

@@ -111,13 +111,14 @@ int checkpointMode(const std::string& mode, int argc, char** argv) {
               "\"steps\": %ld, \"threads\": %d, \"setup_seconds\": %.6g, "
               "\"loop_seconds\": %.6g, \"steps_per_s\": %.6g, \"particle_steps_per_s\": %.6g, "
               "\"list_builds\": %zu, \"list_measurements\": %zu, \"broken_bonds\": %zu, "
-              "\"broken_timed\": %zu, "
+              "\"broken_timed\": %zu, \"compact_lists\": %s, "
               "\"state_hash\": \"%016llx\"}\n",
               mode.c_str(), n, static_cast<unsigned long long>(solver.stepCount()), solver.time(),
               steps, omp_get_max_threads(), std::chrono::duration<double>(start - t0).count(),
               seconds, steps / seconds, static_cast<double>(n) * steps / seconds,
               solver.listBuilds() - buildsBefore, solver.listMeasurements() - measuredBefore,
               solver.brokenBonds(), solver.brokenBonds() - brokenBefore,
+              solver.compactLists() ? "true" : "false",
               static_cast<unsigned long long>(stateHash(solver.system())));
   return 0;
 }

@@ -30,7 +30,12 @@ struct PassData {
   std::vector<std::uint32_t> partner, breaks;
 };
 
-PassData makePass(std::size_t n, std::size_t depth, double sigma, unsigned seed) {
+// Pair lists over n particles, depth entries a lane, a third of them unbonded. The bonded ones
+// rest at 0.8–1.3 r_eq: with exactDoubles the wide lists hold these doubles (which no float offset
+// holds) and the compact lists are unused; else both hold restRef + the float offset, restRef
+// away from r_eq so that a pass decoding from r_eq would fail.
+PassData makePass(std::size_t n, std::size_t depth, double sigma, unsigned seed,
+                  bool exactDoubles = false) {
   using bondedpass::kLanes;
   PassData d;
   std::mt19937_64 rng(seed);
@@ -43,13 +48,14 @@ PassData makePass(std::size_t n, std::size_t depth, double sigma, unsigned seed)
   for (std::size_t b = 0; b <= blocks; ++b)
     d.blockStart.push_back(b * depth * kLanes);
   const double rEq = ws2017::kTwoToOneSixth * sigma;
-  d.restRef = rEq;
+  d.restRef = 1.0625 * rEq;
   for (std::size_t e = 0; e < blocks * depth * kLanes; ++e) {
     d.partner.push_back(pick(rng));
-    const float offset =
-        e % 3 == 0 ? bondedpass::kNoBondOffset : static_cast<float>((rel(rng) - 1.0) * rEq);
+    const bool bonded = e % 3 != 0;
+    const double r0 = bonded ? rel(rng) * rEq : bondedpass::kNoBond;
+    const float offset = bonded ? static_cast<float>(r0 - d.restRef) : bondedpass::kNoBondOffset;
     d.offset.push_back(offset);
-    d.rest.push_back(rEq + static_cast<double>(offset)); // +∞ where unbonded
+    d.rest.push_back(exactDoubles ? r0 : d.restRef + static_cast<double>(offset)); // +∞: none
   }
   d.breaks.assign(blocks, 0);
   d.force.assign(3 * n, 0.0);
@@ -88,7 +94,8 @@ TEST(BondedForces, Avx512PassEqualsTheGenericPassBitForBit) {
   const double sigma = ws2017::headlineSigma();
   for (bool compact : {false, true})
     for (bool kick : {false, true}) {
-      PassData generic = makePass(1003, 12, sigma, 7), wide = generic; // a third unbonded
+      // The wide lists with rest lengths no float offset holds.
+      PassData generic = makePass(1003, 12, sigma, 7, !compact), wide = generic;
       const std::size_t blocks = generic.breaks.size();
       const long brokeGeneric =
           bondedpass::blockForces(passOf(generic, sigma, kick, compact), 0, blocks);
@@ -118,6 +125,7 @@ TEST(BondedForces, CompactListsEqualTheWideListsBitForBit) {
       continue;
     const auto pass = avx512 ? bondedpass::blockForcesAvx512 : bondedpass::blockForces;
     PassData wide = makePass(1003, 12, sigma, 5), compact = wide;
+    const std::vector<float> offsetBefore = compact.offset;
     const std::size_t blocks = wide.breaks.size();
     const long brokeWide = pass(passOf(wide, sigma, true, false), 0, blocks);
     const long brokeCompact = pass(passOf(compact, sigma, true, true), 0, blocks);
@@ -126,10 +134,12 @@ TEST(BondedForces, CompactListsEqualTheWideListsBitForBit) {
     EXPECT_TRUE(sameBits(compact.force, wide.force)) << "forces differ";
     EXPECT_TRUE(sameBits(compact.v, wide.v)) << "half kicks differ";
     EXPECT_TRUE(sameBits(compact.breaks, wide.breaks)) << "per-block break counts differ";
+    // Every entry as before but for the marks, and marked where the wide list is.
     for (std::size_t e = 0; e < wide.rest.size(); ++e)
-      ASSERT_EQ(compact.offset[e] == bondedpass::kBreakingOffset,
-                wide.rest[e] == bondedpass::kBreaking)
-          << "entry " << e << " marked in one list only";
+      ASSERT_EQ(compact.offset[e], wide.rest[e] == bondedpass::kBreaking
+                                       ? bondedpass::kBreakingOffset
+                                       : offsetBefore[e])
+          << "entry " << e;
   }
 }
 

@@ -343,7 +343,8 @@ TEST(BondedImpact, ForcesEqualAllPairsSumWithCompactAndWideLists) {
                 "broken, worst difference %.2f of the rounding allowed\n",
                 cutoff, bonds, static_cast<double>(bonds) / solver.system().size(),
                 solver.compactLists(), solver.brokenBonds(), worst);
-    EXPECT_EQ(solver.compactLists(), cutoff < 1.59); // diagonal bonds: the wide lists
+    // Diagonal bonds (r_cut beyond √2 r_eq): the wide lists.
+    EXPECT_EQ(solver.compactLists(), cutoff < std::sqrt(2.0) * ws2017::kTwoToOneSixth);
     EXPECT_GT(solver.brokenBonds(), 0u);
     EXPECT_LT(worst, 1.0);
   }
@@ -633,44 +634,51 @@ TEST(BondedImpact, BadInputRefusedNamingTheProperty) {
 // A checkpoint written mid-impact (bonds breaking) and read back continues bit for bit; one
 // and two threads give the same bits, and so do step() and advance(); a progress callback can
 // abort after a whole step, and leaves the state whole.
+// With r_cut 1.5 σ (the compact lists) and 1.7 σ (the wide ones: diagonal bonds).
 TEST(BondedImpact, CheckpointRestartAndThreadsBitIdentical) {
-  const BondedSystem start = buildBondedImpact(smallImpact(6700.0, 800));
   const std::string path = ::testing::TempDir() + "bonded_checkpoint.bin";
   const int threadsBefore = omp_get_max_threads();
-  omp_set_num_threads(1);
-  BondedSolver one(start);
-  one.advanceTo(1.2e-6);
-  one.writeCheckpoint(path);
-  const std::size_t brokenAtCheckpoint = one.brokenBonds();
-  one.advance(400);
-  omp_set_num_threads(2);
-  BondedSolver two(start);
-  two.advanceTo(1.2e-6);
-  two.advance(400);
-  BondedSolver restored = BondedSolver::readCheckpoint(path);
-  restored.advance(400);
-  // Step by step: each step() ends with its second half kick done, where advance() leaves it to
-  // the next step's kick-drift (on processors with AVX-512): the same operations, the same bits.
-  BondedSolver stepped = BondedSolver::readCheckpoint(path);
-  for (int s = 0; s < 400; ++s)
-    stepped.step();
-  omp_set_num_threads(threadsBefore);
-  std::printf("[bonded] restart: step %llu, broken %zu at the checkpoint, %zu at the end "
-              "(restored %zu, 2 threads %zu)\n",
-              static_cast<unsigned long long>(one.stepCount()), brokenAtCheckpoint,
-              one.brokenBonds(), restored.brokenBonds(), two.brokenBonds());
-  EXPECT_GT(brokenAtCheckpoint, 0u);
-  EXPECT_GT(one.brokenBonds(), brokenAtCheckpoint);
-  for (const BondedSolver* other : {&restored, &two, &stepped}) {
-    EXPECT_EQ(other->stepCount(), one.stepCount());
-    EXPECT_TRUE(sameBits(other->system().positions, one.system().positions));
-    EXPECT_TRUE(sameBits(other->system().velocities, one.system().velocities));
-    EXPECT_TRUE(sameBits(other->bondBroken(), one.bondBroken()));
-    const BondedEnergies a = other->energies(), b = one.energies();
-    EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0);
+  for (double cutoff : {1.5, 1.7}) {
+    BondedImpactParams p = smallImpact(6700.0, 800);
+    p.rCutOverSigma = cutoff;
+    const BondedSystem start = buildBondedImpact(p);
+    omp_set_num_threads(1);
+    BondedSolver one(start);
+    one.advanceTo(1.2e-6);
+    one.writeCheckpoint(path);
+    const std::size_t brokenAtCheckpoint = one.brokenBonds();
+    one.advance(400);
+    omp_set_num_threads(2);
+    BondedSolver two(start);
+    two.advanceTo(1.2e-6);
+    two.advance(400);
+    BondedSolver restored = BondedSolver::readCheckpoint(path);
+    restored.advance(400);
+    // Step by step: each step() ends with its second half kick done, where advance() leaves it to
+    // the next step's kick-drift (on processors with AVX-512): the same operations, the same bits.
+    BondedSolver stepped = BondedSolver::readCheckpoint(path);
+    for (int s = 0; s < 400; ++s)
+      stepped.step();
+    omp_set_num_threads(threadsBefore);
+    std::printf("[bonded] restart, r_cut %.1f sigma, compact lists %d: step %llu, broken %zu at "
+                "the checkpoint, %zu at the end (restored %zu, 2 threads %zu)\n",
+                cutoff, one.compactLists(), static_cast<unsigned long long>(one.stepCount()),
+                brokenAtCheckpoint, one.brokenBonds(), restored.brokenBonds(), two.brokenBonds());
+    EXPECT_GT(brokenAtCheckpoint, 0u);
+    EXPECT_GT(one.brokenBonds(), brokenAtCheckpoint);
+    for (const BondedSolver* other : {&restored, &two, &stepped}) {
+      EXPECT_EQ(other->stepCount(), one.stepCount());
+      EXPECT_TRUE(sameBits(other->system().positions, one.system().positions));
+      EXPECT_TRUE(sameBits(other->system().velocities, one.system().velocities));
+      EXPECT_TRUE(sameBits(other->bondBroken(), one.bondBroken()));
+      const BondedEnergies a = other->energies(), b = one.energies();
+      EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0);
+    }
+    EXPECT_EQ(restored.compactLists(), one.compactLists());
+    std::remove(path.c_str());
   }
-  std::remove(path.c_str());
 
+  const BondedSystem start = buildBondedImpact(smallImpact(6700.0, 800));
   BondedSolver aborted(start);
   int calls = 0;
   EXPECT_THROW(aborted.advance(500, [&](double) { return ++calls < 3; }), Aborted);
@@ -702,8 +710,11 @@ TEST(BondedImpact, KickDriftInsideTheForcePassBitIdentical) {
   EXPECT_GT(stepped.brokenBonds(), brokenBefore);
   EXPECT_GT(stepped.listBuilds(), buildsBefore);
 
-  BondedSolver fused(start), reported(start), generic(start), genericStepped(start);
+  BondedSolver fused(start), reported(start), generic(start), genericStepped(start), wide(start);
   fused.advance(steps);
+  ASSERT_TRUE(wide.compactLists()); // the lattice's bonds: the compact lists unless told
+  wide.useWideLists();
+  wide.advance(steps);
   int reports = 0;
   reported.advance(steps, [&](double) { return ++reports > 0; });
   generic.useGenericPasses();
@@ -712,7 +723,7 @@ TEST(BondedImpact, KickDriftInsideTheForcePassBitIdentical) {
   for (std::size_t s = 0; s < steps; ++s)
     genericStepped.step();
   EXPECT_GT(reports, 100);
-  for (const BondedSolver* other : {&fused, &reported, &generic, &genericStepped}) {
+  for (const BondedSolver* other : {&fused, &reported, &generic, &genericStepped, &wide}) {
     EXPECT_EQ(other->stepCount(), stepped.stepCount());
     EXPECT_TRUE(sameBits(other->system().positions, stepped.system().positions));
     EXPECT_TRUE(sameBits(other->system().velocities, stepped.system().velocities));
