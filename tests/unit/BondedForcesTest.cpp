@@ -86,6 +86,15 @@ template <class T> bool sameBits(const std::vector<T>& a, const std::vector<T>& 
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
 
+// Two passes' outputs, bit for bit: forces, bond marks in either list, break counts, velocities.
+void expectSameOutputs(const PassData& a, const PassData& b) {
+  EXPECT_TRUE(sameBits(a.force, b.force)) << "forces differ";
+  EXPECT_TRUE(sameBits(a.rest, b.rest)) << "bond marks differ";
+  EXPECT_TRUE(sameBits(a.offset, b.offset)) << "bond marks differ (compact)";
+  EXPECT_TRUE(sameBits(a.breaks, b.breaks)) << "per-block break counts differ";
+  EXPECT_TRUE(sameBits(a.v, b.v)) << "velocities differ";
+}
+
 } // namespace
 
 TEST(BondedForces, Avx512PassEqualsTheGenericPassBitForBit) {
@@ -108,11 +117,7 @@ TEST(BondedForces, Avx512PassEqualsTheGenericPassBitForBit) {
       ASSERT_GT(brokeGeneric, 0);
       ASSERT_LT(brokeGeneric, bonded);
       EXPECT_EQ(brokeWide, brokeGeneric);
-      EXPECT_TRUE(sameBits(wide.force, generic.force)) << "forces differ";
-      EXPECT_TRUE(sameBits(wide.rest, generic.rest)) << "bond marks differ";
-      EXPECT_TRUE(sameBits(wide.offset, generic.offset)) << "bond marks differ (compact)";
-      EXPECT_TRUE(sameBits(wide.breaks, generic.breaks)) << "per-block break counts differ";
-      EXPECT_TRUE(sameBits(wide.v, generic.v)) << "half kicks differ";
+      expectSameOutputs(wide, generic);
     }
 }
 
@@ -176,11 +181,7 @@ TEST(BondedForces, KickDriftBlockByBlockEqualsThePassThenTheKickDrift) {
       }
       ASSERT_GT(brokeSplit, 0); // the case holds breaks
       EXPECT_EQ(brokeFused, brokeSplit);
-      EXPECT_TRUE(sameBits(fused.force, split.force)) << "forces differ";
-      EXPECT_TRUE(sameBits(fused.rest, split.rest)) << "bond marks differ";
-      EXPECT_TRUE(sameBits(fused.offset, split.offset)) << "bond marks differ (compact)";
-      EXPECT_TRUE(sameBits(fused.breaks, split.breaks)) << "per-block break counts differ";
-      EXPECT_TRUE(sameBits(fused.v, split.v)) << "velocities differ";
+      expectSameOutputs(fused, split);
       EXPECT_TRUE(sameBits(xFused, xSplit)) << "drifted positions differ";
       EXPECT_TRUE(sameBits(fused.x, split.x)) << "the current positions were written";
       EXPECT_NE(xFused, fused.x); // the particles moved
