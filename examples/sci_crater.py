@@ -81,6 +81,9 @@ def parse_args(argv):
     g.add_argument("--target-material", default="regolith")
     g.add_argument("--porosity", type=float, default=-1.0, help="target porosity; negative: the material's")
     g.add_argument("--friction-angle", type=float, default=30.0, help="degrees")
+    g.add_argument("--cohesion", type=float, default=0.0,
+                   help="the SPH target's Drucker-Prager cohesion in Pa (Ryugu's surface: below about 1.3 Pa, "
+                        "Arakawa et al. 2020); the DEM bed stays cohesionless")
     g.add_argument("--gravity", type=float, default=1000.0,
                    help=f"surface gravity in m/s^2 (Ryugu: {RYUGU_GRAVITY}); see the module help for the cost")
     g = p.add_argument_group("SPH stage")
@@ -135,7 +138,7 @@ def parse_args(argv):
         if not (value > 0.0 and math.isfinite(value)):
             p.error(f"--{name.replace('_', '-')} must be positive (got {value})")
     for name in ("ejecta_speed_limit", "bed_radius", "dem_time", "handoff_time", "sph_target_radius",
-                 "late_stage_sound_speed"):
+                 "late_stage_sound_speed", "cohesion"):
         value = getattr(args, name)
         if not (value >= 0.0 and math.isfinite(value)):
             p.error(f"--{name.replace('_', '-')} must not be negative (got {value})")
@@ -180,6 +183,7 @@ def saved_sph_state(simple, args):
     if target is not None and target != args.target_material:
         sys.exit(f"--sph-state {args.sph_state}: its target is {target}, this run's {args.target_material}")
     for name, ours, what in (("FrictionAngle", args.friction_angle, "friction angle"),
+                             ("Cohesion", args.cohesion, "target cohesion"),
                              ("TargetRadius", args.sph_target_radius, "SPH target radius"),
                              ("TargetCoarsening", args.sph_coarsening, "SPH target coarsening")):
         theirs = field_value(data, name)
@@ -286,7 +290,7 @@ def main(argv):
                     os.remove(stale)
         sph = simple.SPHImpact(ImpactorMaterial=args.impactor_material, ImpactorMass=args.impactor_mass,
                                ImpactSpeed=args.impact_speed, TargetMaterial=args.target_material,
-                               TargetPorosity=args.porosity, FrictionAngle=args.friction_angle, Cohesion=0.0,
+                               TargetPorosity=args.porosity, FrictionAngle=args.friction_angle, Cohesion=args.cohesion,
                                SurfaceGravity=args.gravity, ParticlesAcrossImpactor=args.sph_resolution,
                                TargetRadius=args.sph_target_radius, TargetCoarsening=args.sph_coarsening,
                                TargetContainer=1,
@@ -449,7 +453,8 @@ def main(argv):
         "impactor": {"material": args.impactor_material, "mass_kg": args.impactor_mass,
                      "speed_m_s": args.impact_speed, "density_kg_m3": rho_imp},
         "target": {"material": args.target_material, "bulk_density_kg_m3": round(rho_bulk, 1),
-                   "porosity": round(porosity, 4), "friction_angle_deg": args.friction_angle},
+                   "porosity": round(porosity, 4), "friction_angle_deg": args.friction_angle,
+                   "cohesion_pa": args.cohesion},
         "crater_diameter_m": measures["diameter"] if found else None,
         "rim_diameter_m": measures["rim_diameter"] if found else None,
         "crater_depth_m": measures["depth"] if found else None,

@@ -5,7 +5,7 @@ the hand-off carried the compact SPH material's momentum over exactly and the dr
 account for the rest, the DEM bed lost energy as it settled, the pi-scaling prediction agrees
 with the values computed by hand in docs/physics.md section 4.2, the impactor's reported depth lies
 inside the SPH target, and the pictures and report exist; then that a run resumed after its
-first frame continues from the checkpoint, and that a bad --sph-coarsening is refused."""
+first frame continues from the checkpoint, and that a bad --sph-coarsening or a negative --cohesion is refused."""
 
 import json
 import os
@@ -110,4 +110,6 @@ if os.path.isfile(growth_file):
 # Bad input: a graded target outside [1, 100] is refused before any work.
 code = run_example(source_dir, "sci_crater", ["--sph-coarsening", "0.5", "--output-dir", out + "_bad"])
 t.check(code == 2, f"--sph-coarsening 0.5: exit code {code}, expected the usage error 2")
+code = run_example(source_dir, "sci_crater", ["--cohesion", "-1", "--output-dir", out + "_bad"])
+t.check(code == 2, f"--cohesion -1: exit code {code}, expected the usage error 2")
 sys.exit(t.close())
