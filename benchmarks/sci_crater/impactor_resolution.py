@@ -11,7 +11,10 @@ and its slip through that target, and prints the e-folding length of its speed. 
 graded target's particle count for other coarsenings and gradings (the setup's formula).
 Stdlib only (no numpy).
 
-    python3 benchmarks/sci_crater/impactor_resolution.py CHECKPOINT...
+    python3 benchmarks/sci_crater/impactor_resolution.py [--cohesion PA] CHECKPOINT...
+
+--cohesion: the target's cohesion of the run (ck_sph_bench's CK_COHESION; default 0), for the
+pressure law of the pair forces and the count of particles at the tension cut.
 
 The checkpoints of docs/validation.md, "Depth and the SPH resolution" (C = 10 and 8; T = 1e-3,
 then windows to T = 1, 3, 10, 20 s each resumed from the last with CK_RESUME):
@@ -67,17 +70,30 @@ def read_checkpoint(path):
 C_LATE = 0.46637
 GRAVITY = 1.5e-4  # m/s^2, Ryugu (CK_GRAVITY)
 AV_ALPHA, AV_BETA = 1.0, 2.0
-# rho0 (matrix), G/K before the switch, cohesionless (pressure cut at 0; the regolith's
-# Drucker-Prager apex) or not, for Materials 0 (copper.cfg) and 1, 2 (regolith.cfg).
+# rho0 (matrix), G/K before the switch, Drucker-Prager (pressure cut at the cone's apex) or not,
+# for Materials 0 (copper.cfg) and 1, 2 (regolith.cfg).
 MATERIALS = {0: (8900.0, 46e9 / 140e9, False), 1: (2700.0, 2e7 / 26.7e9, True),
              2: (2700.0, 2e7 / 26.7e9, True)}
+FRICTION_ANGLE = 30.0  # degrees (ck_sph_bench's target)
+COHESION = 0.0  # Pa (--cohesion)
+
+
+def tension_cut():
+    """The Drucker-Prager apex of sph/Strength.cpp, -k / (3B) = -c / tan(phi) (0 without cohesion;
+    the regolith has no Grady-Kipp flaws, so its damage stays 0)."""
+    return -COHESION / math.tan(math.radians(FRICTION_ANGLE))
+
+
+def late_eos_pressure(mat, rho, alpha):
+    rho0 = MATERIALS[mat][0]
+    return rho0 * C_LATE ** 2 * (alpha * rho / rho0 - 1.0) / alpha
 
 
 def late_pressure_and_signal(mat, rho, alpha, damage):
-    rho0, g_over_k, cohesionless = MATERIALS[mat]
+    rho0, g_over_k, drucker_prager = MATERIALS[mat]
     K = rho0 * C_LATE ** 2
-    p = K * (alpha * rho / rho0 - 1.0) / alpha
-    p = max(p, 0.0) if cohesionless else (p * (1.0 - damage) if p < 0.0 else p)
+    p = late_eos_pressure(mat, rho, alpha)
+    p = max(p, tension_cut()) if drucker_prager else (p * (1.0 - damage) if p < 0.0 else p)
     return p, C_LATE * math.sqrt(1.0 + 4.0 / 3.0 * g_over_k * K / (rho * C_LATE ** 2))
 
 
@@ -247,6 +263,15 @@ class Checkpoint:
                                  and z0 <= -x[3 * j + 2] < z0 + 1))
         return floor, column
 
+    def tension(self):
+        """The target within 1 m of the axis, 0-8 m deep: its count, how many the late-stage law
+        puts in tension and how many of them at the tension cut."""
+        x, s = self.s["x"], self.s
+        sel = [j for j in self.tgt
+               if math.hypot(x[3 * j], x[3 * j + 1]) < 1.0 and 0.0 <= -x[3 * j + 2] < 8.0]
+        p = [late_eos_pressure(1, s["rho"][j], s["alpha"][j]) for j in sel]
+        return len(sel), sum(1 for q in p if q < 0.0), sum(1 for q in p if q <= tension_cut())
+
     def axis_profile(self, bins, radius=0.3):
         """Median smoothing length and build spacing of the target within `radius` of the axis."""
         rows = []
@@ -281,6 +306,12 @@ def graded_count(dx, coarsening, radius, fine_cap=None, fine_radius=0.0):
 
 
 def main(paths):
+    global COHESION
+    if paths[:1] == ["--cohesion"] and len(paths) > 1:
+        COHESION = float(paths[1])
+        if not COHESION >= 0.0 or not math.isfinite(COHESION):
+            sys.exit("--cohesion must be a finite cohesion in Pa, 0 or more")
+        paths = paths[2:]
     if not paths or paths[0] in ("-h", "--help"):
         print(__doc__)
         return 0 if paths else 2
@@ -351,6 +382,10 @@ def main(paths):
               "from the axis: " + " ".join(f"{d:.2f}" for d in floor) +
               "; target density / bulk within 1 m of the axis, depth 0-1 ... 7-8 m: " +
               " ".join(f"{d:.2f}" for d in column))
+        if c.t > 1.001e-3:  # the late-stage law
+            n, below, cut = c.tension()
+            print(f"     target within 1 m of the axis, 0-8 m deep: {n} particles, {below} in tension "
+                  f"by the law, {cut} at the tension cut {tension_cut() + 0.0:.3g} Pa")
         vt = sur["v_target"]
         rel = math.sqrt(sum((c.vcom[k] - vt[k]) ** 2 for k in range(3)))
         print(f"     target in the support moves at vz {vt[2]:.3g} m/s (impactor {c.vcom[2]:.3g}); "

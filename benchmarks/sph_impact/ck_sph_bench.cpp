@@ -16,7 +16,8 @@
 // and every CK_SAVE_EVERY steps), CK_TRACE (a file: one line per step with what set its size).
 // CK_BLOCK_STEPS=L: individual power-of-two steps in the late stage, up to 2^L times the smallest
 // (SphParams::blockStepLevels; a step is then a block cycle, and the smallest steps and particle
-// updates are printed at the end).
+// updates are printed at the end). CK_COHESION (Pa, default 0): the target's Drucker–Prager
+// cohesion (docs/validation.md, "Depth and the SPH resolution", point 9).
 #include "sph/ImpactSetup.h"
 #include "sph/SphRun.h"
 #include "sph/SphSolver.h"
@@ -162,6 +163,17 @@ int main(int argc, char** argv) {
     setup.coarsening = std::atof(e);
   setup.frictionAngle = 30.0;
   setup.cohesion = 0.0;
+  // The target's cohesion (Pa). A checkpoint holds no material constants: a resume takes it
+  // from here. The regolith has no Grady–Kipp flaws, so its damage stays 0 and keeps it whole.
+  if (const char* e = std::getenv("CK_COHESION")) {
+    char* end = nullptr;
+    setup.cohesion = std::strtod(e, &end);
+    if (end == e || *end != '\0' || !(setup.cohesion >= 0.0) || !std::isfinite(setup.cohesion)) {
+      std::fprintf(stderr, "CK_COHESION must be a finite cohesion in Pa, 0 or more (got '%s')\n",
+                   e);
+      return 1;
+    }
+  }
   SphImpactProblem prob = buildImpact(setup);
   if (const char* e = std::getenv("CK_SKIN"))
     prob.params.skin = std::atof(e);
@@ -191,6 +203,8 @@ int main(int argc, char** argv) {
   std::printf(
       "SCI-like SPH: %zu particles (%zu impactor), dx = %.4g m, %d threads, to t = %.3g s\n", n,
       prob.impactorParticles, prob.spacing, omp_get_max_threads(), end);
+  if (setup.cohesion > 0.0)
+    std::printf("target cohesion %.4g Pa\n", setup.cohesion);
   double P0[3];
   solver.totalMomentum(P0);
   const double E0 = solver.totalEnergy();
