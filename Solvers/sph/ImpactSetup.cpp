@@ -275,6 +275,9 @@ SphImpactProblem buildImpact(const SphImpactSetup& setup) {
     out.params.wallViscosity = 1.0;
   }
   out.params.gravity[2] = -setup.surfaceGravity;
+  // The late-stage switch keeps the target's weight (sph/Overburden.h): surface at z = 0.
+  out.params.overburdenDensity = tgt.eos.referenceDensity() / tgt.distention;
+  out.params.overburdenSurface = 0.0;
   return out;
 }
 

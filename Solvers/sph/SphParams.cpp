@@ -45,6 +45,10 @@ void SphParams::validate() const {
     throw InputError("SPH: the late-stage time must be finite (negative: no late stage)");
   if (lateStageTime >= 0.0 && !(lateStageSoundSpeed > 0.0 && std::isfinite(lateStageSoundSpeed)))
     throw InputError("SPH: the late-stage sound speed must be positive");
+  if (!(overburdenDensity >= 0.0) || !std::isfinite(overburdenDensity) ||
+      !std::isfinite(overburdenSurface))
+    throw InputError("SPH: the overburden density must be finite and not negative (0: none) and "
+                     "its surface height finite");
   if (!(blockStepLevels >= 0 && blockStepLevels <= 12))
     throw InputError("SPH: the block-step levels (BlockStepLevels) must be in [0, 12]");
   if (blockStepLevels > 0 && (xsph > 0.0 || summationDensity))

@@ -57,6 +57,13 @@ struct SphParams {
   double domainRadius = 0.0; // m
   double domainCentre[3] = {0, 0, 0};
   double lateStageSoundSpeed = 100.0; // m/s
+  // The target's weight through the switch (sph/Overburden.h): the bulk density ρ_o of the
+  // overburden (0: none, the whole pressure falls with the bulk modulus) and the height of the
+  // free surface along −gravity (the plane x·ĝ = −overburdenSurface, ĝ the unit gravity). Under
+  // the surface the switch keeps the lithostatic pressure ρ_o |g| d and scales only the departure
+  // from it. Uniform gravity only (the point mass is not counted).
+  double overburdenDensity = 0.0; // kg/m³
+  double overburdenSurface = 0.0; // m
   // The pressure, deviatoric stress and density of rigid particles: Extrapolated from the
   // adjacent material (Adami, Hu & Adams 2012; sph/WallBoundary.h), or Dynamic, from their own
   // continuity density (dynamic boundary particles, Crespo et al. 2007; the rule before

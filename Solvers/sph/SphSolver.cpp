@@ -2,6 +2,7 @@
 
 #include "common/Error.h"
 #include "sph/Kernels.h"
+#include "sph/Overburden.h"
 #include "sph/PairTerms.h"
 #include "sph/SimdClones.h"
 #include "sph/Strength.h"
@@ -460,7 +461,9 @@ std::vector<double> SphSolver::switchMaterials() {
 }
 
 void SphSolver::enterLateStage() {
+  const std::vector<double> earlyK = earlyBulkModuli(par_.materials);
   const std::vector<double> scale = switchMaterials();
+  keepOverburden(s_, par_, earlyK);
   for (std::size_t i = 0; i < s_.size(); ++i) {
     const double f = scale[static_cast<std::size_t>(s_.material[i])];
     for (int k = 0; k < 6; ++k)
