@@ -1,5 +1,6 @@
 // The target's weight through the late-stage switch (sph/Overburden.h): a layer of granular
 // soil at rest under gravity in its lithostatic state, switched to a 42 times softer law.
+#include "SphColumns.h"
 #include "sph/SphSolver.h"
 
 #include <gtest/gtest.h>
@@ -40,17 +41,7 @@ Ringing switchedLayer(bool keepOverburden) {
   par.lateStageTime = 1e-4, par.lateStageSoundSpeed = c;
   if (keepOverburden)
     par.overburdenDensity = rho0, par.overburdenSurface = H;
-  for (int a = 0; a < 2; ++a)
-    par.periodic[a] = true, par.boxLo[a] = 0.0, par.boxHi[a] = nxy * dx;
-  SphState s;
-  const double m = rho0 * dx * dx * dx, rest[3] = {0, 0, 0};
-  for (int k = -3; k < nz; ++k)
-    for (int j = 0; j < nxy; ++j)
-      for (int i = 0; i < nxy; ++i) {
-        const double x[3] = {(i + 0.5) * dx, (j + 0.5) * dx, (k + 0.5) * dx};
-        const double p = k < 0 ? 0.0 : rho0 * g * (H - x[2]);
-        s.add(x, rest, m, rho0 * std::pow(1.0 + n * p / K, 1.0 / n), 0.0, k < 0 ? 1 : 0);
-      }
+  const SphState s = sphtest::lithostaticColumn(par, nxy, nz, dx, rho0, g, K, n);
   SphSolver solver(s, par);
   Ringing out;
   for (int t = 1; t <= 30; ++t) {

@@ -1,6 +1,7 @@
 // Solid mechanics of the SPH solver: the planar aluminium-on-aluminium impact against the
 // Hugoniot of the aluminium equation of state, the Jaumann rotation of stress, energy and
 // momentum conservation with strength.
+#include "SphColumns.h"
 #include "sph/SphSolver.h"
 #include "sph/Strength.h"
 
@@ -566,20 +567,7 @@ Column hydrostaticColumn(SphParams::Walls walls) {
   par.walls = walls;
   if (walls == SphParams::Walls::Dynamic)
     par.wallViscosity = 1.0; // the rule before 2026-12-05 whole
-  for (int a = 0; a < 2; ++a) {
-    par.periodic[a] = true;
-    par.boxLo[a] = 0.0;
-    par.boxHi[a] = nxy * dx;
-  }
-  SphState s;
-  const double m = rho0 * dx * dx * dx, rest[3] = {0, 0, 0};
-  for (int k = -3; k < nz; ++k)
-    for (int j = 0; j < nxy; ++j)
-      for (int i = 0; i < nxy; ++i) {
-        const double x[3] = {(i + 0.5) * dx, (j + 0.5) * dx, (k + 0.5) * dx};
-        const double p = k < 0 ? 0.0 : rho0 * g * (H - x[2]);
-        s.add(x, rest, m, rho0 * std::pow(1.0 + n * p / K, 1.0 / n), 0.0, k < 0 ? 1 : 0);
-      }
+  const SphState s = sphtest::lithostaticColumn(par, nxy, nz, dx, rho0, g, K, n);
   SphSolver solver(s, par);
   solver.advanceTo(1.0);
   const SphState& st = solver.state();
