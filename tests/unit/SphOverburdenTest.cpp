@@ -72,7 +72,7 @@ Ringing switchedLayer(bool keepOverburden) {
 // this lattice is 0.982 of the exact one and the top rows' kernels are cut by the surface
 // (SphSolid.HydrostaticColumnLoadsTheFloorWithItsWeight): a residual load of a few per cent of
 // the weight, which moves the layer at a few per cent of g H / c. Measured (2026-12-05): without,
-// mean |vz| up to 0.45 g H / c; keeping it, 0.030 g H / c (largest particle speed 0.052).
+// mean |vz| up to 0.45 g H / c; keeping it, 0.030 g H / c (largest particle speed 0.052 g H / c).
 TEST(SphOverburden, LateStageSwitchKeepsTheLayerAtRest) {
   const double scale = 9.81 * 0.2 / 8.0;
   const Ringing without = switchedLayer(false), kept = switchedLayer(true);
