@@ -13,7 +13,8 @@
 // linear in ρ (dp'/dρ = K'/ρ0), so this raises the particle's density by (1 − K'/K) p_L ρ0 / K'
 // (at Ryugu's gravity 0.8 % at 11.6 m). The lithostatic stress is taken isotropic (no K0
 // anisotropy), as in iSALE's lithostatic initial state; rigid particles and materials without a
-// late-stage law are left alone.
+// late-stage law are left alone. With SphParams::summationDensity the next settle recomputes ρ
+// from the positions and the raise is lost (the impact set-up integrates the density).
 #pragma once
 
 #include "sph/SphParams.h"
