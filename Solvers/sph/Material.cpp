@@ -26,7 +26,7 @@ std::string trim(const std::string& s) {
 double Material::switchToLateStage(double c) {
   if (!eos.hasLateStage())
     return 1.0; // gases keep their law
-  const double Kold = bulkModulus > 0.0 ? bulkModulus : eos.referenceBulkModulus();
+  const double Kold = lawBulkModulus();
   const double K = eos.switchToLateStage(c);
   double scale = 1.0;
   if (shearModulus > 0.0) {

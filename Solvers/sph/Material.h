@@ -28,6 +28,10 @@ struct Material {
                                // taken from the adjacent material (SphParams::walls)
   std::string source;          // where the values come from
 
+  // The bulk modulus the pressure follows now: bulkModulus if set, else the law's reference.
+  double lawBulkModulus() const {
+    return bulkModulus > 0.0 ? bulkModulus : eos.referenceBulkModulus();
+  }
   // The late stage (sph/Eos.h): a material whose law has a late-stage form takes the linear law
   // of sound speed c and keeps its Poisson ratio, so G falls with K. Returns the factor by which
   // G fell (1: unchanged), by which each particle's deviatoric stress is scaled: the elastic

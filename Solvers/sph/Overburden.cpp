@@ -8,7 +8,7 @@ std::vector<double> earlyBulkModuli(const std::vector<Material>& materials) {
   std::vector<double> K;
   K.reserve(materials.size());
   for (const Material& m : materials)
-    K.push_back(m.bulkModulus > 0.0 ? m.bulkModulus : m.eos.referenceBulkModulus());
+    K.push_back(m.lawBulkModulus());
   return K;
 }
 

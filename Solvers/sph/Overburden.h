@@ -24,8 +24,7 @@
 
 namespace craterkit {
 
-// The bulk modulus each material's pressure follows before the switch (Material::bulkModulus,
-// else its law's reference modulus).
+// Each material's Material::lawBulkModulus, taken before the switch.
 std::vector<double> earlyBulkModuli(const std::vector<Material>& materials);
 
 // After Material::switchToLateStage: raises the density of every particle below the surface by
