@@ -94,8 +94,11 @@ def parse_args(argv):
                    help="graded SPH target (SPHImpact's TargetCoarsening, experimental): the impactor's spacing "
                         "within four impactor radii, coarsening outwards up to this multiple of it; 1: uniform")
     g.add_argument("--handoff-time", type=float, default=0.0,
-                   help="s after contact; 0: 0.63 sqrt(D/g) for the predicted D, when the crater has "
-                        "mostly opened (20 ms at the default gravity)")
+                   help="s after contact; 0: --handoff-fraction sqrt(D/g) for the predicted D")
+    g.add_argument("--handoff-fraction", type=float, default=0.63,
+                   help="the hand-off time in units of sqrt(D/g) where --handoff-time is not given: 0.63 "
+                        "(20 ms at the default gravity) when the crater has mostly opened; about 0.1 "
+                        "while it still grows, which leaves the growth to the DEM stage")
     g.add_argument("--late-stage-time", type=float, default=1e-3,
                    help="s; from then on the SPH solids use the late-stage scheme (a soft linear equation "
                         "of state, long steps: SPHImpact's LateStageTime); negative: never")
@@ -142,6 +145,8 @@ def parse_args(argv):
         value = getattr(args, name)
         if not (value >= 0.0 and math.isfinite(value)):
             p.error(f"--{name.replace('_', '-')} must not be negative (got {value})")
+    if not (0.0 < args.handoff_fraction <= 10.0):
+        p.error(f"--handoff-fraction must be in (0, 10] (got {args.handoff_fraction})")
     if not (0 <= args.sph_block_steps <= 12):
         p.error(f"--sph-block-steps must be in [0, 12] (got {args.sph_block_steps})")
     if not (1.0 <= args.sph_coarsening <= 100.0):
@@ -265,7 +270,7 @@ def main(argv):
     t_scale = formation_time(d_pi, args.gravity)
     args.sph_target_radius = args.sph_target_radius or 0.8 * d_pi
     args.handoff_given = args.handoff_time > 0.0
-    args.handoff_time = args.handoff_time or 0.63 * t_scale
+    args.handoff_time = args.handoff_time or args.handoff_fraction * t_scale
     args.late_stage_sound_speed = args.late_stage_sound_speed or 10.0 * math.sqrt(args.gravity * d_pi)
     bed_radius = args.bed_radius or 1.05 * d_pi
     dem_time = args.dem_time or 1.5 * t_scale

@@ -113,22 +113,27 @@ def sci_run(args, name, gravity, particles, packings, extra):
 
 
 # The graded SPH stage of the Ryugu cases: coarsening 10 (coarse spacing 0.38 m), with individual
-# time steps in its late stage (2^7 of the smallest at most) and partial list rebuilds, 1,106 s
-# for the whole case on two cores (2026-12-05, docs/validation.md); coarsening 15 gave a crater
-# 44 % deeper (3.54 m against 2.46 m), so it is no longer the validation's stage.
+# time steps in its late stage (2^7 of the smallest at most) and partial list rebuilds, handed off
+# at 29.5 s (0.095 sqrt(D_pi/g)) while the crater still grows, so that the DEM stage grows it (as in
+# the seed's hybrid). Up to about 40 s the SPH cavity is converged in the resolution (its floor
+# within 0.13 m between coarsening 10 and 8); handed off at 0.63 sqrt(D_pi/g) (196 s, the example's
+# default) the crater's depth was the SPH late stage's, which is not converged: the target under the
+# floor dilates to 0.17-0.6 of its bulk density and rises by 1.3 m at coarsening 10 and 3.7 m at 8
+# (docs/validation.md, "Depth and the SPH resolution", points 7, 8 and 12).
 RYUGU_STAGE = ["--sph-coarsening", "10", "--sph-domain-radius", "29", "--sph-target-radius", "11.6",
-               "--late-stage-sound-speed", "0.46637", "--sph-block-steps", "7"]
-# Their folder under BUILD/slow names the stage, so that --resume never takes another stage's
-# hand-off (sci_crater.py reuses a sph_handoff.vtp it finds).
-RYUGU_DIR = "sci_ryugu_c10"
+               "--late-stage-sound-speed", "0.46637", "--sph-block-steps", "7", "--handoff-time", "29.5"]
+# The same hand-off in units of sqrt(D_pi/g), for the pi-scaling runs at other gravities.
+HANDOFF_FRACTION = ["--handoff-fraction", "0.095"]
+# Their folder under BUILD/slow names the stage and the hand-off, so that --resume never takes
+# another stage's hand-off (sci_crater.py reuses a sph_handoff.vtp it finds).
+RYUGU_DIR = "sci_ryugu_c10_h29.5"
 SCI = {"diameter": 14.5, "rim_diameter": 18.0, "depth": 2.3}
 
 
 def sci_crater_ryugu(args):
-    """The SCI crater at Ryugu's gravity (1.5e-4 m/s^2) on the coarsening-10 SPH target with
-    30,000 RCP grains (1,106 s on two cores, recorded 2026-12-05: SPH 823 s, bed 17 s, DEM 233 s;
-    the 100,000-grain bed of sci_convergence_bed took 5,719 s at coarsening 15 with other work on
-    the machine, past 45 minutes): D within 15 % of 14.5 m, depth within 25 % of
+    """The SCI crater at Ryugu's gravity (1.5e-4 m/s^2) on the coarsening-10 SPH target handed off
+    at 29.5 s to 30,000 RCP grains (about 9 minutes on two cores: SPH 232 s, bed 15 s, DEM 267 s in
+    the hand run of 2026-12-06, docs/validation.md): D within 15 % of 14.5 m, depth within 25 % of
     2.3 m, rim diameter within 20 % of 18 m (Zhang et al. 2021 and docs/physics.md §4.1)."""
     r = sci_run(args, RYUGU_DIR, 1.5e-4, [30000], ["RCP"], RYUGU_STAGE)[("RCP", 30000)]
     rows = []
@@ -164,7 +169,7 @@ def sci_convergence_bed(args):
     """Convergence in the bed: the Ryugu case's SPH stage handed to 30,000 (the
     Ryugu case's own run) and 100,000 RCP grains; D and depth must change by less than 10 %."""
     coarse = ryugu_report(args, RYUGU_DIR)
-    fine = sci_run(args, "sci_ryugu_bed100k", 1.5e-4, [100000], ["RCP"],
+    fine = sci_run(args, "sci_ryugu_bed100k_h29.5", 1.5e-4, [100000], ["RCP"],
                    RYUGU_STAGE + ["--sph-state", os.path.join(args.build, "slow", RYUGU_DIR, "RCP_30000",
                                                               "sph_handoff.vtp")])[("RCP", 100000)]
     return convergence_rows("sci_convergence_bed", coarse, fine, "30,000 -> 100,000 grains")
@@ -173,11 +178,12 @@ def sci_convergence_bed(args):
 def sci_convergence_sph(args):
     """Convergence in the SPH stage: the Ryugu case (30,000 RCP grains) on the coarsening-10 and
     the coarsening-8 SPH targets (coarse spacing 0.38 and 0.30 m); D and depth must change by
-    less than 10 %. (Coarsening 15 -> 10 changed the depth by 44 %: docs/validation.md.)"""
+    less than 10 %. (Handed off at 196 s, coarsening 10 -> 8 changed the depth by 117 % of the
+    finer's: docs/validation.md.)"""
     coarse = ryugu_report(args, RYUGU_DIR)
     stage = list(RYUGU_STAGE)
     stage[stage.index("--sph-coarsening") + 1] = "8"
-    fine = sci_run(args, "sci_ryugu_c8", 1.5e-4, [30000], ["RCP"], stage)[("RCP", 30000)]
+    fine = sci_run(args, "sci_ryugu_c8_h29.5", 1.5e-4, [30000], ["RCP"], stage)[("RCP", 30000)]
     return convergence_rows("sci_convergence_sph", coarse, fine, "SPH coarsening 10 -> 8")
 
 
@@ -185,7 +191,7 @@ def rcp_vs_hcp(args):
     """RCP against HCP beds on the same hand-off at Ryugu's gravity (30,000 grains): the seed's
     claim is that HCP makes the smaller, shallower crater. Stated as measured; the case fails only
     if a run fails."""
-    r = sci_run(args, "sci_ryugu_packing", 1.5e-4, [30000], ["RCP", "HCP"],
+    r = sci_run(args, "sci_ryugu_packing_h29.5", 1.5e-4, [30000], ["RCP", "HCP"],
                 RYUGU_STAGE + ["--sph-state", os.path.join(args.build, "slow", RYUGU_DIR, "RCP_30000",
                                                            "sph_handoff.vtp")])
     rcp, hcp = r[("RCP", 30000)], r[("HCP", 30000)]
@@ -195,11 +201,11 @@ def rcp_vs_hcp(args):
 
 def pi_scaling(args):
     """D / D_pi at three gravities spanning a factor 10^7 (1000, 10, 1.5e-4 m/s^2), 6,000 grains at
-    the two high gravities and the Ryugu case's 30,000: in the gravity regime D / D_pi does not
-    depend on g; it passes when the three agree within 15 %."""
+    the two high gravities and the Ryugu case's 30,000, each handed off at 0.095 sqrt(D_pi/g): in the
+    gravity regime D / D_pi does not depend on g; it passes when the three agree within 15 %."""
     rows, ratios = [], []
     for g, n in ((1000.0, 6000), (10.0, 6000)):
-        r = sci_run(args, f"pi_scaling_g{g:g}", g, [n], ["RCP"], [])[("RCP", n)]
+        r = sci_run(args, f"pi_scaling_g{g:g}_h0.095", g, [n], ["RCP"], HANDOFF_FRACTION)[("RCP", n)]
         ratios.append((g, r["diameter_over_pi_scaling"]))
     ratios.append((1.5e-4, ryugu_report(args, RYUGU_DIR)["diameter_over_pi_scaling"]))
     mean = sum(x for _, x in ratios) / len(ratios)
