@@ -132,8 +132,8 @@ SCI = {"diameter": 14.5, "rim_diameter": 18.0, "depth": 2.3}
 
 def sci_crater_ryugu(args):
     """The SCI crater at Ryugu's gravity (1.5e-4 m/s^2) on the coarsening-10 SPH target handed off
-    at 29.5 s to 30,000 RCP grains (about 9 minutes on two cores: SPH 232 s, bed 15 s, DEM 267 s in
-    the hand run of 2026-12-06, docs/validation.md): D within 15 % of 14.5 m, depth within 25 % of
+    at 29.5 s to 30,000 RCP grains (487 s on two cores, recorded 2026-12-06: SPH 195 s, bed 14 s,
+    DEM 267 s; docs/validation.md): D within 15 % of 14.5 m, depth within 25 % of
     2.3 m, rim diameter within 20 % of 18 m (Zhang et al. 2021 and docs/physics.md §4.1)."""
     r = sci_run(args, RYUGU_DIR, 1.5e-4, [30000], ["RCP"], RYUGU_STAGE)[("RCP", 30000)]
     rows = []
@@ -178,8 +178,8 @@ def sci_convergence_bed(args):
 def sci_convergence_sph(args):
     """Convergence in the SPH stage: the Ryugu case (30,000 RCP grains) on the coarsening-10 and
     the coarsening-8 SPH targets (coarse spacing 0.38 and 0.30 m); D and depth must change by
-    less than 10 %. (Handed off at 196 s, coarsening 10 -> 8 changed the depth by 117 % of the
-    finer's: docs/validation.md.)"""
+    less than 10 %. (Handed off at 196 s, coarsening 10 -> 8 changed the depth by more than the
+    finer's depth itself: docs/validation.md.)"""
     coarse = ryugu_report(args, RYUGU_DIR)
     stage = list(RYUGU_STAGE)
     stage[stage.index("--sph-coarsening") + 1] = "8"
