@@ -6,7 +6,7 @@ account for the rest, the DEM bed lost energy as it settled, the pi-scaling pred
 with the values computed by hand in docs/physics.md section 4.2, the impactor's reported depth lies
 inside the SPH target, and the pictures and report exist; then that a run resumed after its
 first frame continues from the checkpoint, and that a bad --sph-coarsening, a negative --cohesion
-or a zero --handoff-fraction is refused."""
+or --rolling-friction and a zero --handoff-fraction are refused."""
 
 import json
 import os
@@ -115,4 +115,6 @@ code = run_example(source_dir, "sci_crater", ["--cohesion", "-1", "--output-dir"
 t.check(code == 2, f"--cohesion -1: exit code {code}, expected the usage error 2")
 code = run_example(source_dir, "sci_crater", ["--handoff-fraction", "0", "--output-dir", out + "_bad"])
 t.check(code == 2, f"--handoff-fraction 0: exit code {code}, expected the usage error 2")
+code = run_example(source_dir, "sci_crater", ["--rolling-friction", "-0.1", "--output-dir", out + "_bad"])
+t.check(code == 2, f"--rolling-friction -0.1: exit code {code}, expected the usage error 2")
 sys.exit(t.close())
