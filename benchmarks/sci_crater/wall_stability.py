@@ -22,7 +22,8 @@ of them.
 
 Writes OUTPUT_DIR/wall_stability.json (one record per pit and time, rewritten after each) and a
 cross-section of each pit at its last time (pitSLOPE.png). --resume keeps the pits the file
-already holds whole and runs the others.
+already holds whole from a run of the same set-up (frictions, contacts, bed, pit, gravity) and
+runs the others; the file keeps the records of other set-ups. Without --resume it is replaced.
 """
 
 import argparse
@@ -234,6 +235,7 @@ def run_pit(simple, args, bed, slope):
                             grains_removed=removed, grain_radius_m=bed.grain, bed_packing_fraction=bed.packing,
                             settling_friction=args.settling_friction, static_friction=args.static_friction,
                             rolling_friction=args.rolling_friction, max_expected_speed=args.max_expected_speed,
+                            particles_requested=args.particles, pit_diameter_m=args.pit_diameter, gravity=args.gravity,
                             wall_seconds=round(time.time() - start, 1)))
         print(f"  {slope:g} deg, t = {f:g} sqrt(D/g) ({t:.4g} s): depth {now['depth_m']:.3g} m, wall slope "
               f"{angle_text(now['wall_slope_deg'])}, mean slope {now['mean_slope_deg']:.1f} deg, kinetic energy "
@@ -252,8 +254,14 @@ def main(argv):
     os.makedirs(args.output_dir, exist_ok=True)
     path = os.path.join(args.output_dir, "wall_stability.json")
     records = json.load(open(path)) if args.resume and os.path.isfile(path) else []
-    done = {r["cut_slope_deg"] for r in records if r["time_over_scale"] >= args.dem_time * (1 - 1e-9)}
-    records = [r for r in records if r["cut_slope_deg"] in done]
+    same = {"settling_friction": args.settling_friction, "static_friction": args.static_friction,
+            "rolling_friction": args.rolling_friction, "max_expected_speed": args.max_expected_speed,
+            "particles_requested": args.particles, "pit_diameter_m": args.pit_diameter, "gravity": args.gravity}
+    mine = [all(r.get(k) == v for k, v in same.items()) for r in records]  # this run's set-up
+    whole = args.dem_time * (1 - 1e-9)
+    done = {r["cut_slope_deg"] for r, m in zip(records, mine) if m and r["time_over_scale"] >= whole}
+    # Other set-ups' records stay in the file; this set-up's unfinished pits are run again.
+    records = [r for r, m in zip(records, mine) if not m or r["cut_slope_deg"] in done]
     simple = load_plugin()
     bed = SciBed(simple, args)
     for slope in args.slopes:

@@ -51,7 +51,6 @@ for bad, name in BAD:
     t.check(code == 2 and name in err, f"{bad} gave exit code {code} and {err.strip()[-200:]!r}")
 
 
-
 def pit(slope, extra):
     folder = tempfile.mkdtemp()
     code, printed, _ = run(["--particles", "10000", "--slopes", str(slope), "--dem-time", "0.5", "--frames", "1",
