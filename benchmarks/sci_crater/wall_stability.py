@@ -86,14 +86,15 @@ def parse_args(argv):
 
 class SciBed:
     """The SCI set-up's scales and a bed made as the validation's: D_pi, sqrt(D_pi / g), the
-    grain radius, the bed, its surface (the mean height of its profile, which the SCI example
-    measures the crater against) and its packing fraction."""
+    grain radius (all known before the plugin is loaded: a pit wider than the bowl is refused
+    first), then with `build` the bed, its surface (the mean height of its profile, which the
+    SCI example measures the crater against) and its packing fraction."""
 
-    def __init__(self, simple, args):
+    def __init__(self, args):
         rho_imp = material_value(SCI_IMPACT["impactor"], "rho0")
         target = SCI_IMPACT["target"]
-        rho_bulk = material_value(target, "rho0") / material_value(target, "distention")
-        self.d_pi = crater_diameter(SCI_IMPACT["mass"], SCI_IMPACT["speed"], rho_imp, rho_bulk, args.gravity)
+        self.rho_bulk = material_value(target, "rho0") / material_value(target, "distention")
+        self.d_pi = crater_diameter(SCI_IMPACT["mass"], SCI_IMPACT["speed"], rho_imp, self.rho_bulk, args.gravity)
         self.t_scale = formation_time(self.d_pi, args.gravity)
         self.bowl = 1.05 * self.d_pi
         if args.pit_diameter >= 2.0 * self.bowl:
@@ -101,12 +102,14 @@ class SciBed:
                   file=sys.stderr)
             raise SystemExit(2)
         self.grain = self.bowl * (RCP_PACKING / (2.0 * args.particles)) ** (1.0 / 3.0)
+
+    def build(self, simple, args):
         print(f"D_pi {self.d_pi:.3g} m, sqrt(D_pi/g) {self.t_scale:.3g} s; bowl radius {self.bowl:.3g} m, grain "
               f"radius {self.grain:.3g} m, pit diameter {args.pit_diameter:.3g} m "
               f"({args.pit_diameter / (2 * self.grain):.0f} grain diameters)", flush=True)
         start = time.time()
         bed = simple.GranularBed(Packing="RCP", Container="Bowl", ContainerRadius=self.bowl, ParticleRadius=self.grain,
-                                 SurfaceHeight=0.0, ParticleDensity=rho_bulk / RCP_PACKING,
+                                 SurfaceHeight=0.0, ParticleDensity=self.rho_bulk / RCP_PACKING,
                                  SettlingGravity=args.gravity, SettlingFriction=args.settling_friction,
                                  MaxParticles=max(10 * args.particles, 100000))
         print_progress(bed, "bed")
@@ -180,7 +183,7 @@ class Profiles:
             self.fine.UpdatePipeline()
         fine = servermanager.Fetch(self.fine)  # as crater_measures: no second, timeless update
         return {"depth_m": m["depth"], "wall_slope_deg": wall_slope(fine, radius),
-                "mean_slope_deg": math.degrees(math.atan(m["depth"] / radius))}
+                "mean_slope_deg": None if m["depth"] is None else math.degrees(math.atan(m["depth"] / radius))}
 
     def delete(self, simple):
         simple.Delete(self.fine)
@@ -196,6 +199,10 @@ def kinetic_energy_per_mgr(data, gravity, grain):
 
 def angle_text(value):
     return "none (too few bins)" if value is None else f"{value:.1f} deg"
+
+
+def depth_text(value):
+    return "none" if value is None else f"{value:.3g} m"
 
 
 def write_records(path, records):
@@ -215,7 +222,7 @@ def run_pit(simple, args, bed, slope):
     cut_profiles = Profiles(simple, source, bed)
     cut = cut_profiles.measure(radius)
     cut_profiles.delete(simple)
-    print(f"pit cut at {slope:g} deg: {removed} grains removed, depth {cut['depth_m']:.3g} m, wall slope "
+    print(f"pit cut at {slope:g} deg: {removed} grains removed, depth {depth_text(cut['depth_m'])}, wall slope "
           f"{angle_text(cut['wall_slope_deg'])}", flush=True)
     t0 = field_value(pit, "Time", 0.0)
     fractions = [args.dem_time * (k + 1) / args.frames for k in range(args.frames)]
@@ -237,8 +244,8 @@ def run_pit(simple, args, bed, slope):
                             rolling_friction=args.rolling_friction, max_expected_speed=args.max_expected_speed,
                             particles_requested=args.particles, pit_diameter_m=args.pit_diameter, gravity=args.gravity,
                             wall_seconds=round(time.time() - start, 1)))
-        print(f"  {slope:g} deg, t = {f:g} sqrt(D/g) ({t:.4g} s): depth {now['depth_m']:.3g} m, wall slope "
-              f"{angle_text(now['wall_slope_deg'])}, mean slope {now['mean_slope_deg']:.1f} deg, kinetic energy "
+        print(f"  {slope:g} deg, t = {f:g} sqrt(D/g) ({t:.4g} s): depth {depth_text(now['depth_m'])}, wall slope "
+              f"{angle_text(now['wall_slope_deg'])}, mean slope {angle_text(now['mean_slope_deg'])}, kinetic energy "
               f"{records[-1]['kinetic_energy_per_mgr']:.2g} m g r per grain ({time.time() - start:.0f} s)", flush=True)
     final = simple.ForceTime(Input=dem, ForcedTime=frames[-1], IgnorePipelineTime=1)
     render_cross_section(final, os.path.join(args.output_dir, f"pit{slope:g}.png"), surface_height=bed.surface,
@@ -262,8 +269,9 @@ def main(argv):
     done = {r["cut_slope_deg"] for r, m in zip(records, mine) if m and r["time_over_scale"] >= whole}
     # Other set-ups' records stay in the file; this set-up's unfinished pits are run again.
     records = [r for r, m in zip(records, mine) if not m or r["cut_slope_deg"] in done]
+    bed = SciBed(args)
     simple = load_plugin()
-    bed = SciBed(simple, args)
+    bed.build(simple, args)
     for slope in args.slopes:
         if slope in done:
             print(f"pit cut at {slope:g} deg: kept from {path}", flush=True)
