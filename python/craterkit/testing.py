@@ -41,14 +41,28 @@ def captured_vtk_messages():
         original.UnRegister(None)
 
 
+def run_script(path, args, capture=False):
+    """Runs the Python script at PATH in this interpreter with ARGS as its command line; returns
+    (exit code, stdout, stderr), the two texts empty unless `capture`."""
+    import contextlib
+    import io
+    import runpy
+    import sys
+    sys.argv = [path] + list(args)
+    out, err = io.StringIO(), io.StringIO()
+    code = 0
+    with contextlib.ExitStack() as stack:
+        if capture:
+            stack.enter_context(contextlib.redirect_stdout(out))
+            stack.enter_context(contextlib.redirect_stderr(err))
+        try:
+            runpy.run_path(path, run_name="__main__")
+        except SystemExit as stop:
+            code = stop.code or 0
+    return code, out.getvalue(), err.getvalue()
+
+
 def run_example(source_dir, name, args):
     """Runs examples/NAME.py in this interpreter with ARGS; returns its exit code."""
     import os
-    import runpy
-    import sys
-    sys.argv = [name + ".py"] + list(args)
-    try:
-        runpy.run_path(os.path.join(source_dir, "examples", name + ".py"), run_name="__main__")
-        return 0
-    except SystemExit as stop:
-        return stop.code or 0
+    return run_script(os.path.join(source_dir, "examples", name + ".py"), args)[0]
