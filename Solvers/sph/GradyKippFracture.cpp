@@ -77,7 +77,10 @@ void GradyKippFracture::integrate(std::vector<double>& damage, const std::vector
                                   double dt, const DamageRates& a, const DamageRates* b) {
   if (a.rate.empty())
     return;
-  for (std::size_t i = 0; i < damage.size(); ++i) {
+  const long n = static_cast<long>(damage.size());
+  // Each particle on its own: any thread count gives the serial loop's bits.
+#pragma omp parallel for schedule(static) if (n >= 4096)
+  for (long i = 0; i < n; ++i) {
     const double rate = b ? 0.5 * (a.rate[i] + b->rate[i]) : a.rate[i];
     if (rate <= 0.0)
       continue;

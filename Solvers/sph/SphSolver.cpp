@@ -491,13 +491,6 @@ double SphSolver::step(double dt) {
     }
   }
   const double asked = dt;
-  const std::size_t n = s_.size();
-  const bool xs = par_.xsph > 0.0;
-  // The predictor's state and rates live in members, so a step allocates nothing.
-  SphState& mid = mid_;
-  Rates& k2 = k2_;
-  std::vector<double>& pm = pm_;
-  std::vector<double>& cm = cm_;
   double err = 0.0;
   std::size_t worst = 0;
   for (int attempt = 0;; ++attempt) {
@@ -512,54 +505,20 @@ double SphSolver::step(double dt) {
     // bring an unlisted pair into range; the margin covers several steps.
     if (!nb_.valid(s_, par_, k1_.dx, k1_.dv, dt))
       nb_.build(s_, par_, k1_.dx, dt);
-    // The predictor's fields are written from the state's (masses and materials never change,
-    // h is set by settle): no copy of the whole state at every try.
-    if (mid.size() != n)
-      mid = s_;
-    mid.alpha = s_.alpha, mid.damage = s_.damage;
-    for (std::size_t i = 0; i < 3 * n; ++i) {
-      mid.x[i] = s_.x[i] + dt * (s_.v[i] + (xs ? k1_.dx[i] : 0.0));
-      mid.v[i] = s_.v[i] + dt * k1_.dv[i];
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      mid.rho[i] = par_.summationDensity
-                       ? s_.rho[i]
-                       : std::max({floorOf(s_, i), 1e-6 * s_.rho[i], s_.rho[i] + dt * k1_.drho[i]});
-      mid.u[i] = std::max(0.0, s_.u[i] + dt * k1_.du[i]);
-    }
-    for (std::size_t i = 0; i < 6 * n; ++i)
-      mid.S[i] = s_.S[i] + dt * k1_.dS[i];
-    GradyKippFracture::integrate(mid.damage, s_.damage, dt, k1_.damage, nullptr);
-    settle(mid, pm, cm);
-    computeRates(mid, pm, cm, k2);
+    // The predictor's state and rates live in members, so a step allocates nothing.
+    predict(dt); // into mid_
+    settle(mid_, pm_, cm_);
+    computeRates(mid_, pm_, cm_, k2_);
     // Error of the Euler predictor against Heun's step, relative to each particle's own
     // scales (speed: its signal speed; density; energy: its energy plus c²). Steps above the
     // tolerance are taken again, shorter (as miluphcuda's adaptive RK2 does).
-    err = stepError(dt, k2, worst);
+    err = stepError(dt, k2_, worst);
     record_.attempts = attempt + 1;
     if (err <= par_.errorTolerance)
       break;
     dt *= std::max(0.1, 0.9 * std::sqrt(par_.errorTolerance / err));
   }
-  for (std::size_t i = 0; i < 3 * n; ++i) {
-    s_.x[i] +=
-        0.5 * dt * (s_.v[i] + mid.v[i] + (xs ? k1_.dx[i] + k2.dx[i] : 0.0)); // before v changes
-    s_.v[i] += 0.5 * dt * (k1_.dv[i] + k2.dv[i]);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!par_.summationDensity)
-      s_.rho[i] = std::max(floorOf(s_, i), s_.rho[i] + 0.5 * dt * (k1_.drho[i] + k2.drho[i]));
-    s_.u[i] = std::max(0.0, s_.u[i] + 0.5 * dt * (k1_.du[i] + k2.du[i]));
-    s_.alpha[i] = mid.alpha[i]; // compaction is kept from the predictor and can go on below
-    if (!(s_.rho[i] > 0.0) || !std::isfinite(s_.rho[i]) || !std::isfinite(s_.u[i]))
-      throw std::runtime_error("SPH: particle " + std::to_string(i) +
-                               " has a non-positive or non-finite density or energy at t = " +
-                               std::to_string(time_ + dt) + " s");
-  }
-  for (std::size_t i = 0; i < 6 * n; ++i)
-    s_.S[i] += 0.5 * dt * (k1_.dS[i] + k2.dS[i]);
-  // reads each particle's start-of-step damage before writing it
-  GradyKippFracture::integrate(s_.damage, s_.damage, dt, k1_.damage, &k2.damage);
+  correct(dt); // from mid_ and k2_
   settle(s_, p_, c_);
   const double signal = computeRates(s_, p_, c_, k1_);
   const double grow = err > 0.0 ? std::min(2.0, 0.9 * std::sqrt(par_.errorTolerance / err)) : 2.0;

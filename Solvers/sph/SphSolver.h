@@ -134,10 +134,15 @@ private:
                                              const std::vector<double>& c, Rates& r,
                                              const std::vector<std::uint32_t>* active) const;
   template <class K> void summation(SphState& s) const;
+  // sph/HeunStep.cpp: the Euler predictor of a step of dt into mid_ (from s_ and k1_), and
+  // Heun's corrector of s_ (from k1_ and the predictor's rates k2_).
+  void predict(double dt);
+  void correct(double dt);
   // sph/StepControl.cpp: the Courant and force limits, and the largest relative Euler–Heun
   // difference of a step of dt whose predictor's rates are k2 (worst: its particle).
   double limitStep(const SphState& s, const Rates& r, double maxSignal) const;
   double stepError(double dt, const Rates& k2, std::size_t& worst) const;
+  double particleError(std::size_t i, double dt, const Rates& k2) const;
   double courantLimit(std::size_t i) const;
   double particleStep(std::size_t i) const; // its Courant and force limits
   // sph/BlockSteps.cpp. Each particle's state at its last update, when that was and when its
