@@ -349,9 +349,8 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
     entries = (slot < 0 ? nb_.entry().data() : rigidEntry_.data()) + first;
     count = (slot < 0 ? nb_.start()[a + 1] : rigidStart_[row + 1]) - first;
   };
-  const bool thin = !active || active->size() * 4 >= n;
-  if (thin)
-    support_.update(Xp, n, nb_.version(), pc.period, listed);
+  const bool thin = (!active || active->size() * 4 >= n) &&
+                    support_.follow(Xp, n, nb_.version(), pc.period, listed);
   // Each pair once over clusters where nothing needs the per-particle loop's extras (periodic
   // images, walls) and the body is at least four slabs long (sph/ClusterPairs.h).
   const bool byClusters =

@@ -71,13 +71,22 @@ void SupportList::draw(const PairPosition* X, std::size_t n, const double period
   ++draws_;
 }
 
-bool SupportList::update(const PairPosition* X, std::size_t n, std::size_t version,
+bool SupportList::follow(const PairPosition* X, std::size_t n, std::size_t version,
                          const double period[3], const Source& source) {
-  if (drawn_ && version == version_ && ref_.size() == n && holds(X, n))
+  if (rest_ > 0) {
+    --rest_;
     return false;
+  }
+  if (drawn_ && version == version_ && ref_.size() == n && holds(X, n)) {
+    ++life_;
+    return true;
+  }
+  if (drawn_ && life_ < kSupportLife) {
+    drawn_ = false, life_ = 0, rest_ = kSupportRest;
+    return false;
+  }
   draw(X, n, period, source);
-  version_ = version;
-  drawn_ = true;
+  version_ = version, drawn_ = true, life_ = 1;
   return true;
 }
 

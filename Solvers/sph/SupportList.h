@@ -17,19 +17,24 @@
 
 namespace craterkit {
 
-// The skin, as a fraction of the pair's support (benchmarks/JOURNAL.md, "The support list").
+// The skin, as a fraction of the pair's support (benchmarks/JOURNAL.md, "Each pair once").
 constexpr double kSupportSkin = 0.1;
+constexpr std::size_t kSupportLife = 12, kSupportRest = 48; // rate evaluations
 
 class SupportList {
 public:
   // a's Verlet entries (index * 32 + image code) and their number.
   using Source =
       std::function<void(std::size_t a, const std::uint32_t*& entries, std::uint32_t& count)>;
-  // Draws the list again from `source` where it was drawn from another Verlet list (`version`
-  // differs) or for other particles, or where a particle has moved or its h has grown so far
-  // since the last draw that an unlisted pair could be inside the support. `period`: the box
-  // lengths of the periodic axes (0 where not periodic). Returns whether it drew.
-  bool update(const PairPosition* X, std::size_t n, std::size_t version, const double period[3],
+  // Brings the list up to date for a rate evaluation at positions X: draws it again from
+  // `source` where it was drawn from another Verlet list (`version` differs) or for other
+  // particles, or where a particle has moved or its h has grown so far since the last draw that
+  // an unlisted pair could be inside the support. `period`: the box lengths of the periodic
+  // axes (0 where not periodic). Returns whether the pair terms are to use it: a list that had
+  // to be drawn again after fewer than kSupportLife evaluations is not worth its draws (fast
+  // particles, or Verlet lists rebuilt often), so the list then rests for kSupportRest
+  // evaluations, in which the pair terms use the Verlet list.
+  bool follow(const PairPosition* X, std::size_t n, std::size_t version, const double period[3],
               const Source& source);
   const std::uint32_t* entries(std::size_t a) const { return entry_.data() + start_[a]; }
   std::uint32_t count(std::size_t a) const { return count_[a]; }
@@ -43,6 +48,7 @@ private:
   std::vector<std::uint32_t> count_, entry_;
   std::vector<PairPosition> ref_; // positions and h at the last draw
   std::size_t version_ = 0, draws_ = 0;
+  std::size_t life_ = 0, rest_ = 0; // evaluations on the present draw; left to rest
   bool drawn_ = false;
 };
 

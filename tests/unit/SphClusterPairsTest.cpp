@@ -61,7 +61,7 @@ Body makeBody(int nx, int ny, int nz, unsigned seed) {
 SupportList supportOf(const Body& b) {
   SupportList list;
   const double none[3] = {0.0, 0.0, 0.0};
-  list.update(b.pos.data(), b.pos.size(), 1, none,
+  list.follow(b.pos.data(), b.pos.size(), 1, none,
               [&](std::size_t a, const std::uint32_t*& e, std::uint32_t& m) {
                 e = b.verlet[a].data(), m = static_cast<std::uint32_t>(b.verlet[a].size());
               });

@@ -54,11 +54,11 @@ TEST(SphSupportList, HoldsEveryPairInsideTheSupportWhileParticlesMove) {
   };
   const double none[3] = {0.0, 0.0, 0.0};
   SupportList list;
-  std::size_t inside = 0, listed = 0;
-  const int calls = 200;
+  std::size_t inside = 0, listed = 0, used = 0;
+  const int calls = 300;
   for (int call = 0; call < calls; ++call) {
-    list.update(X.data(), n, 1, none, source);
-    for (std::size_t a = 0; a < n; ++a) {
+    const bool use = list.follow(X.data(), n, 1, none, source);
+    for (std::size_t a = 0; a < n && use; ++a) {
       ASSERT_TRUE(inOrder(list.entries(a), list.count(a), verlet[a])) << "particle " << a;
       listed += list.count(a);
       for (std::uint32_t code : verlet[a]) {
@@ -74,18 +74,46 @@ TEST(SphSupportList, HoldsEveryPairInsideTheSupportWhileParticlesMove) {
                            << " inside the support is not listed";
       }
     }
-    // A random walk of about a twentieth of the skin per call, and h growing by 0.2 % per call.
+    used += use;
+    // A random walk of about a sixtieth of the skin per call, and h growing by 0.1 % per call.
     for (PairPosition& p : X) {
       for (double& x : p.x)
-        x += 0.1 * kSupportSkin * p.h * (u(rng) - 0.5);
-      p.h *= 1.002;
+        x += 0.03 * kSupportSkin * p.h * (u(rng) - 0.5);
+      p.h *= 1.001;
     }
   }
-  // Drawn again as the walk went on, but not at every call; and thin: a list of all pairs
-  // within (1 + s) of the support holds about (1 + s)³ times the pairs inside it.
+  // Drawn again as the walk went on, each draw used for several calls, never resting (each
+  // list lived long enough); and thin: a list of all pairs within (1 + s) of the support holds
+  // about (1 + s)³ times the pairs inside it.
   EXPECT_GT(list.draws(), 2u);
-  EXPECT_LT(list.draws(), static_cast<std::size_t>(calls) / 4);
+  EXPECT_LT(list.draws(), static_cast<std::size_t>(calls) / kSupportLife);
+  EXPECT_EQ(used, static_cast<std::size_t>(calls));
   EXPECT_LT(static_cast<double>(listed), 1.5 * static_cast<double>(inside));
+}
+
+TEST(SphSupportList, RestsWhenItMustBeDrawnAgainTooSoon) {
+  // Two particles closing fast: the list must be drawn again after a few calls, so it rests.
+  std::vector<PairPosition> X(2);
+  X[0].x[0] = 0.0, X[1].x[0] = 1.0;
+  for (PairPosition& p : X)
+    p.x[1] = p.x[2] = 0.0, p.h = 0.5;
+  std::vector<std::vector<std::uint32_t>> verlet = {{1 * 32 + kNoShift}, {0 * 32 + kNoShift}};
+  const SupportList::Source source = [&](std::size_t a, const std::uint32_t*& e, std::uint32_t& m) {
+    e = verlet[a].data(), m = static_cast<std::uint32_t>(verlet[a].size());
+  };
+  const double none[3] = {0.0, 0.0, 0.0};
+  SupportList list;
+  int calls = 0;
+  while (list.follow(X.data(), 2, 1, none, source)) { // 0.01 a call against 0.45 s h = 0.0225
+    ++calls;
+    X[1].x[0] -= 0.01;
+  }
+  EXPECT_EQ(calls, 3);
+  EXPECT_EQ(list.draws(), 1u);
+  for (std::size_t k = 0; k < kSupportRest; ++k)
+    EXPECT_FALSE(list.follow(X.data(), 2, 1, none, source));
+  EXPECT_TRUE(list.follow(X.data(), 2, 1, none, source)); // drawn again after the rest
+  EXPECT_EQ(list.draws(), 2u);
 }
 
 TEST(SphSupportList, KeepsPeriodicImagesAndDrawsAgainForANewVerletList) {
@@ -102,13 +130,17 @@ TEST(SphSupportList, KeepsPeriodicImagesAndDrawsAgainForANewVerletList) {
     e = verlet[a].data(), m = static_cast<std::uint32_t>(verlet[a].size());
   };
   SupportList list;
-  EXPECT_TRUE(list.update(X.data(), 2, 1, L, source));
+  EXPECT_TRUE(list.follow(X.data(), 2, 1, L, source));
   ASSERT_EQ(list.count(0), 1u);
   EXPECT_EQ(list.entries(0)[0], 1u * 32 + 12);
   ASSERT_EQ(list.count(1), 1u); // the unshifted image is 0.95 away
   EXPECT_EQ(list.entries(1)[0], 0u * 32 + 14);
-  EXPECT_FALSE(list.update(X.data(), 2, 1, L, source)); // nothing moved
+  EXPECT_TRUE(list.follow(X.data(), 2, 1, L, source)); // nothing moved: not drawn again
+  EXPECT_EQ(list.draws(), 1u);
   verlet[1] = {0 * 32 + kNoShift};
-  EXPECT_TRUE(list.update(X.data(), 2, 2, L, source)); // a new Verlet list
+  for (std::size_t k = 0; k < kSupportLife; ++k) // long enough not to rest
+    EXPECT_TRUE(list.follow(X.data(), 2, 1, L, source));
+  EXPECT_TRUE(list.follow(X.data(), 2, 2, L, source)); // a new Verlet list
+  EXPECT_EQ(list.draws(), 2u);
   EXPECT_EQ(list.count(1), 0u);
 }
