@@ -340,23 +340,6 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
                    {0.0, 0.0, 0.0}};
   for (int k = 0; k < 3; ++k)
     pc.period[k] = par_.periodic[k] ? par_.boxHi[k] - par_.boxLo[k] : 0.0;
-  // The rigid particles' rows or the Verlet list's; through the support list where all
-  // particles are updated (a block step of a few would pay for checking every particle).
-  auto listed = [&](std::size_t a, const std::uint32_t*& entries, std::uint32_t& count) {
-    const std::int32_t slot = rigidSlot ? rigidSlot[a] : -1;
-    const auto row = static_cast<std::size_t>(slot);
-    const std::uint32_t first = slot < 0 ? nb_.start()[a] : rigidStart_[row];
-    entries = (slot < 0 ? nb_.entry().data() : rigidEntry_.data()) + first;
-    count = (slot < 0 ? nb_.start()[a + 1] : rigidStart_[row + 1]) - first;
-  };
-  const bool thin = (!active || active->size() * 4 >= n) &&
-                    support_.follow(Xp, n, nb_.version(), pc.period, listed);
-  // Each pair once over clusters where nothing needs the per-particle loop's extras (periodic
-  // images, walls) and the body is at least four slabs long (sph/ClusterPairs.h).
-  const bool byClusters =
-      thin && wide && !pc.periodic && !rigidSlot && clusters_.follow(Xp, n, support_);
-  if (byClusters)
-    clusters_.evaluate<K, Xsph>(Pp, Xp, pc);
   double maxSignal = 0.0;
   // Each particle accumulates only its own rates (pairs are visited from both sides), so the
   // loop needs no atomics and gives the same bits for any thread count.
@@ -371,22 +354,18 @@ double SphSolver::rates(const SphState& s, const std::vector<double>& p,
     PairConstants pcA = pc;
     pcA.gradOn = solid ? 1.0 : 0.0;
     Scratch& w = scratch[omp_get_thread_num()];
-    PairSums sums;
-    if (byClusters) {
-      sums = clusters_.of(a);
-    } else {
-      const std::uint32_t* entries = nullptr;
-      std::uint32_t count = 0;
-      if (thin)
-        entries = support_.entries(a), count = support_.count(a);
-      else
-        listed(a, entries, count);
-      const auto self = static_cast<std::uint32_t>(a);
-      const std::size_t m = pc.periodic ? supportStream<true>(Xp, self, entries, count, w, pc)
-                            : wide      ? supportStreamWide(Xp, self, entries, count, w)
-                                        : supportStream<false>(Xp, self, entries, count, w, pc);
-      sums = wide ? pairSumsWide<K, Xsph>(Pp, A, m, w, pcA) : pairSums<K, Xsph>(Pp, A, m, w, pcA);
-    }
+    const std::int32_t slot = rigidSlot ? rigidSlot[a] : -1;
+    const std::uint32_t first =
+        slot < 0 ? nb_.start()[a] : rigidStart_[static_cast<std::size_t>(slot)];
+    const std::uint32_t* entries = (slot < 0 ? nb_.entry().data() : rigidEntry_.data()) + first;
+    const std::uint32_t last =
+        slot < 0 ? nb_.start()[a + 1] : rigidStart_[static_cast<std::size_t>(slot) + 1];
+    const std::uint32_t count = last - first, self = static_cast<std::uint32_t>(a);
+    const std::size_t m = pc.periodic ? supportStream<true>(Xp, self, entries, count, w, pc)
+                          : wide      ? supportStreamWide(Xp, self, entries, count, w)
+                                      : supportStream<false>(Xp, self, entries, count, w, pc);
+    const PairSums sums =
+        wide ? pairSumsWide<K, Xsph>(Pp, A, m, w, pcA) : pairSums<K, Xsph>(Pp, A, m, w, pcA);
     const double* acc = sums.acc;
     const double* xs = sums.xs;
     const double* grad = sums.grad;

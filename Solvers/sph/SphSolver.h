@@ -20,12 +20,10 @@
 // for any thread count.
 #pragma once
 
-#include "sph/ClusterPairs.h"
 #include "sph/GradyKippFracture.h"
 #include "sph/NeighbourList.h"
 #include "sph/SphParams.h"
 #include "sph/SphState.h"
-#include "sph/SupportList.h"
 #include "sph/WallBoundary.h"
 
 #include <cmath>
@@ -62,7 +60,6 @@ public:
   std::size_t steps() const { return steps_; }
   std::size_t neighbourBuilds() const { return nb_.builds(); }       // neighbour lists built so far
   std::size_t neighbourRefreshes() const { return nb_.refreshes(); } // partial rebuilds so far
-  std::size_t supportDraws() const { return support_.draws(); }      // support lists drawn so far
   // Particle a's listed neighbours (index * 32 + periodic image code) in the current
   // lists (a full build or a partial rebuild), sorted, and its margin in that build (tests check
   // them against all pairs).
@@ -198,8 +195,6 @@ private:
   mutable std::vector<std::uint32_t> rigidStart_, rigidEntry_;
   mutable std::vector<std::int32_t> rigidSlot_;
   mutable std::size_t rigidBuild_ = 0;
-  mutable SupportList support_;        // the pair terms' entries (follows the list)
-  mutable ClusterPairs clusters_;      // the pair terms each pair once (follows support_)
   mutable std::vector<double> signal_; // each particle's signal speed over h/2 (last rates)
   Block blk_;
   StepRecord record_;
