@@ -151,7 +151,7 @@ inline double requestedTime(vtkInformation* info, double fallback) {
              : fallback;
 }
 
-// Particles as vertices with the point arrays of ARCHITECTURE.md.
+// Particles as vertices with the point arrays of docs/architecture.md ("Data model").
 inline void toPolyData(const ParticleSet& s, vtkPolyData* out) {
   setVertices(out, s.position);
   vtkPointData* pd = out->GetPointData();

@@ -10,9 +10,10 @@
  * (LammpsDump.h, PkdgravSs.h, FileBytes.h); bad files give an error naming the file and the
  * line or byte.
  *
- * Output: one vertex per particle with the point arrays of ARCHITECTURE.md that the file
- * holds (Velocity, AngularVelocity, Radius, Mass, Density, Material = LAMMPS type - 1, Id)
- * plus every other column under its own name; field data Time, TimeStep, BoxBounds.
+ * Output: one vertex per particle with the point arrays of docs/architecture.md ("Data
+ * model") that the file holds (Velocity, AngularVelocity, Radius, Mass, Density, Material =
+ * LAMMPS type - 1, Id) plus every other column under its own name; field data Time, TimeStep,
+ * BoxBounds.
  */
 #ifndef vtkCraterKitParticleReader_h
 #define vtkCraterKitParticleReader_h

@@ -1,6 +1,6 @@
 #include "bonded/BondedForces.h"
 
-#include "sph/SimdClones.h"
+#include "common/SimdClones.h"
 
 #include <algorithm>
 
@@ -69,7 +69,7 @@ passOf(const BlockPass& p, std::size_t b0, std::size_t b1) {
 
 } // namespace
 
-// Cloned (sph/SimdClones.h) for x86-64-v4, whose clone's operations BondedForcesAvx512.cpp
+// Cloned (common/SimdClones.h) for x86-64-v4, whose clone's operations BondedForcesAvx512.cpp
 // repeats; where the processor has x86-64-v4 and the build has that file (GCC 12+), the
 // solver runs it instead. The clone serves builds without it.
 CK_SIMD_CLONES long blockForces(const BlockPass& p, std::size_t b0, std::size_t b1) {

@@ -1,6 +1,6 @@
 // The force pass of the bonded-particle model (Watson & Steinhauser 2017, Eqs. 3–4, see
 // WatsonSteinhauser2017.h) over the solver's pair lists in blocks of eight particles, in two
-// versions: the generic pass (BondedForces.cpp, cloned for AVX-512 by sph/SimdClones.h) and the
+// versions: the generic pass (BondedForces.cpp, cloned for AVX-512 by common/SimdClones.h) and the
 // same pass written with AVX-512 intrinsics (BondedForcesAvx512.cpp): the eight lanes of a block
 // are the eight doubles of one 512-bit register (GCC 12's AVX-512 clone of the generic pass runs
 // them as two 256-bit halves), and bond breaks are masked stores.

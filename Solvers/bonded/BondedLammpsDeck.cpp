@@ -3,6 +3,7 @@
 
 #include "common/AtomicWrite.h"
 #include "common/Error.h"
+#include "common/LammpsNumber.h"
 #include "dem/LammpsDeck.h"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // Particle state shared by the CraterKit solvers: structure of arrays, SI units.
 //
-// The layout mirrors the point data of ARCHITECTURE.md so that the VTK filters can copy
-// each array in one pass. Vectors are stored as contiguous xyz triples.
+// The layout mirrors the point data of docs/architecture.md ("Data model") so that the VTK
+// filters can copy each array in one pass. Vectors are stored as contiguous xyz triples.
 #pragma once
 
 #include <cstddef>

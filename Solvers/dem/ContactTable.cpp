@@ -2,8 +2,8 @@
 
 #include "common/CountingIndex.h"
 #include "common/GrowFresh.h"
+#include "common/SimdClones.h"
 #include "dem/PairList.h"
-#include "sph/SimdClones.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 // history from its row of the previous table (`from`; the zero row past the end for a new
 // contact), so the contact law runs over contiguous arrays. The loop is written for SIMD
 // (`omp simd`, a branch-free law, compiled for AVX-512 and generic x86-64 as in
-// sph/SimdClones.h): GCC 12 runs the AVX-512 version eight contacts at once (the body is one
+// common/SimdClones.h): GCC 12 runs the AVX-512 version eight contacts at once (the body is one
 // inlined call, so that its local arrays do not become per-lane arrays) and keeps the generic
 // one scalar (-fopt-info-vec: "control flow in loop"). The lanes do the scalar law's operations
 // in its order, without fused multiply-adds: both versions give the same bits. Every contact is

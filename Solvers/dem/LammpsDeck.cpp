@@ -3,21 +3,15 @@
 
 #include "common/AtomicWrite.h"
 #include "common/Error.h"
+#include "common/LammpsNumber.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <sstream>
 
 namespace craterkit {
-
-std::string lammpsNumber(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
 
 void checkLammpsOutputTimes(const std::vector<double>& times, double dt, const std::string& what) {
   if (times.empty())

@@ -62,11 +62,9 @@ struct LammpsCoefficients {
   std::string pairCoeff() const; // the model words after `pair_coeff * *`
 };
 
-// The deck's text conventions, shared with the bonded decks (bonded/BondedLammpsDeck):
-// a number in full precision (%.17g, which round-trips every double); output times each at
-// least one step after the previous (InputError prefixed with WHAT); file names without
-// slashes, blanks or quotes.
-std::string lammpsNumber(double v);
+// The deck's text conventions, shared with the bonded decks (bonded/BondedLammpsDeck; numbers
+// are written by common/LammpsNumber.h): output times each at least one step after the
+// previous (InputError prefixed with WHAT); file names without slashes, blanks or quotes.
 void checkLammpsOutputTimes(const std::vector<double>& times, double dt, const std::string& what);
 void checkLammpsFileName(const std::string& name, const std::string& what);
 

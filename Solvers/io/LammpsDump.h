@@ -1,6 +1,6 @@
 // LAMMPS / LIGGGHTS text dumps (`dump custom`): any number of snapshots per file, columns in
 // any order (gzip-compressed files are inflated by FileBytes first). Known columns map to the
-// CraterKit data model (ARCHITECTURE.md); every other column is kept as an extra array.
+// CraterKit data model (docs/architecture.md); every other column is kept as an extra array.
 // Format: LAMMPS documentation, `dump` command (ITEM: TIMESTEP / NUMBER OF ATOMS / BOX
 // BOUNDS / ATOMS blocks).
 #pragma once

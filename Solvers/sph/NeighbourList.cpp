@@ -1,7 +1,7 @@
 #include "sph/NeighbourList.h"
 
+#include "common/SimdClones.h"
 #include "sph/NeighbourGrids.h"
-#include "sph/SimdClones.h"
 #include "sph/SphSolver.h"
 
 #include <omp.h>

@@ -1,10 +1,10 @@
 #include "sph/SphSolver.h"
 
 #include "common/Error.h"
+#include "common/SimdClones.h"
 #include "sph/Kernels.h"
 #include "sph/Overburden.h"
 #include "sph/PairTerms.h"
-#include "sph/SimdClones.h"
 #include "sph/Strength.h"
 
 #include <omp.h>
@@ -208,7 +208,7 @@ std::size_t supportStream(const PairPosition* Xp, std::uint32_t self, const std:
 
 // Pass 2: the pair terms of particle A over the m pairs of supportStream in w. Where
 // PairTermsWide.cpp is compiled (GCC 12+ on x86-64) and the processor has x86-64-v4, that
-// version runs instead. The AVX-512 clone (sph/SimdClones.h) serves builds without it (other
+// version runs instead. The AVX-512 clone (common/SimdClones.h) serves builds without it (other
 // compilers): its 32 vector registers hold the loop's 17 sums and temporaries, so the loop runs
 // eight pairs wide (27 % less time than the generic code for the SCI-like run, 2026-12-01;
 // benchmarks/JOURNAL.md). All versions differ only by rounding.

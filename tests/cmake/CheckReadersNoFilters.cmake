@@ -1,7 +1,7 @@
 # Fails if a file under Readers/ includes a header of Filters/: the conversions both use live in
 # the Bridge/ module (CraterKit::Bridge), so that Readers depends on Filters in no way
-# (ARCHITECTURE.md, layers). A header counts as Filters' when its path names Filters/ or its
-# file name is one of the headers in Filters/.
+# (docs/architecture.md, "Modules and layers"). A header counts as Filters' when its path names
+# Filters/ or its file name is one of the headers in Filters/.
 #   cmake -DSOURCE_DIR=<tree> -P CheckReadersNoFilters.cmake
 file(GLOB_RECURSE sources "${SOURCE_DIR}/Readers/*.h" "${SOURCE_DIR}/Readers/*.hpp"
      "${SOURCE_DIR}/Readers/*.cpp" "${SOURCE_DIR}/Readers/*.cxx" "${SOURCE_DIR}/Readers/*.txx")

@@ -1,5 +1,5 @@
 # Fails if a file under Solvers/ includes a VTK or ParaView header: the numerics must
-# stay usable without VTK (ARCHITECTURE.md, layers).
+# stay usable without VTK (docs/architecture.md, "Modules and layers").
 file(GLOB_RECURSE sources "${SOURCE_DIR}/Solvers/*.h" "${SOURCE_DIR}/Solvers/*.hpp"
      "${SOURCE_DIR}/Solvers/*.cpp" "${SOURCE_DIR}/Solvers/*.cxx" "${SOURCE_DIR}/Solvers/*.txx")
 if(NOT sources)
