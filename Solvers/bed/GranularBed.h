@@ -16,6 +16,10 @@
 // 64-fold (the contacts relax as under a 64 times stiffer law), trimmed to the surface and
 // relaxed so that no two particles overlap: a dense random packing (monodisperse bulk
 // 0.58–0.64, lower for higher SettlingFriction).
+//
+// generateGranularBed validates the parameters, runs one preparation method and measures the
+// result. Each method is in a file of its own: bed/LatticeBed.h (HCP), bed/RandomFill.h (RCP
+// without settling, and the loose fill for settling) and bed/SettleAndUnload.h (RCP settled).
 #pragma once
 
 #include "bed/SizeDistribution.h"
