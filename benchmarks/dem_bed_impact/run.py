@@ -9,6 +9,11 @@ OpenMP) or 2 MPI ranks (the peers); the step loop alone is timed. CraterKit also
 1 thread, for its speed-up from 1 to 2 threads. Prints particle-steps per second and the
 ratios.
 
+LAMMPS runs the deck CraterKit's own writer makes for this problem (dem/LammpsDeck.h, the deck
+`examples/sci_crater.py --dem-engine lammps` and the LAMMPS deck writer hand to users), written
+by `ck_dem_bench lammps-deck`. LIGGGHTS, for which CraterKit has no writer, reads that deck's
+data file (the same atoms and shrink-wrapped box) with the input written below.
+
 Method: the machine's speed drifts by 15-50 % over minutes, more than the margins measured,
 so the codes run in rounds (--repeat N, default 3): each round runs CraterKit on 1 thread,
 CraterKit on 2 threads, LAMMPS and LIGGGHTS back to back, and every ratio is taken within
@@ -36,21 +41,10 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.dirname(HERE))
 from bench_common import log, mpirun, run  # noqa: E402
 
-# pkdgrav "moderate" regolith coefficients (docs/physics.md §1.7), as ck_dem_bench.cpp sets them;
-# the dashpot coefficients come from its output (the clipped normal law).
-EPS, MU_S, MU_R, MU_T, BETA = 0.55, 0.6, 1.05, 1.3, 0.5
-
-
-def damping(k, factor, mu):
-    """Dashpot coefficient C = factor * sqrt(k mu), the factor as CraterKit computes it."""
-    return factor * math.sqrt(k * mu)
-
-
-def read_bed(path):
-    with open(path) as f:
-        side, depth = map(float, f.readline().split())
-        xyz = [tuple(map(float, line.split())) for line in f if line.strip()]
-    return side, depth, xyz
+# pkdgrav "moderate" regolith coefficients (docs/physics.md §1.7), as ck_dem_bench.cpp sets them,
+# for the LIGGGHTS deck (the LAMMPS deck takes them from CraterKit's writer); the dashpot
+# coefficients come from ck_dem_bench's output (the clipped normal law).
+MU_S, MU_R, BETA = 0.6, 1.05, 0.5
 
 
 def loop_time(text):
@@ -60,60 +54,14 @@ def loop_time(text):
     return float(m.group(1))
 
 
-def write_data(path, ck, xyz, style):
-    """LAMMPS (atom_style sphere) or LIGGGHTS (atom_style granular) data file, the impactor last."""
-    r, rho = ck["radius"], 2000.0
-    side, depth = ck["side"], ck["depth"]
-    ri = ck["impactor_radius"]
-    top = depth + 0.0  # free space above the surface (z = 0) for the impactor and ejecta
-    with open(path, "w") as f:
-        f.write(f"CraterKit benchmark bed ({style})\n\n{len(xyz) + 1} atoms\n1 atom types\n\n")
-        f.write(f"{-side / 2} {side / 2} xlo xhi\n{-side / 2} {side / 2} ylo yhi\n{-depth} {top} zlo zhi\n\n")
-        f.write("Atoms\n\n")
-        for i, (x, y, z) in enumerate(xyz, start=1):
-            f.write(f"{i} 1 {2 * r} {rho} {x:.15g} {y:.15g} {z:.15g}\n")
-        f.write(f"{len(xyz) + 1} 1 {2 * ri} {rho} 0 0 {1.25 * ri}\n")
-        f.write("\nVelocities\n\n")
-        for i in range(1, len(xyz) + 1):
-            f.write(f"{i} 0 0 0 0 0 0\n")
-        f.write(f"{len(xyz) + 1} 0 0 {-ck['speed']} 0 0 0\n")
-
-
-def lammps_input(ck, steps):
-    m = ck["mass"]
-    mu = m / 2.0
-    kn, kt = ck["kn"], 2.0 / 7.0 * ck["kn"]
-    # CraterKit's normal force never pulls, with the damping that keeps eps_n under that clipping
-    # (ContactModels.h clippedDampingFactor): LAMMPS' limit_damping with the same coefficient.
-    cn, ct = damping(kn, ck["damping_factor_n"], mu), damping(kt, ck["damping_factor_t"], mu)
-    rbar = ck["radius"] / 2.0
-    br = BETA * rbar
-    coeffs = (f"hooke {kn} {cn} tangential linear_history {kt} {ct / cn} {MU_S} "
-              f"rolling sds {kn * BETA ** 2} {cn * BETA ** 2} {MU_R * BETA} "
-              f"twisting sds {2 * kt * br * br} {2 * ct * br * br} {MU_T * br * MU_S} damping velocity "
-              "limit_damping")
-    side, depth = ck["side"], ck["depth"]
-    skin = 0.2 * ck["radius"]
-    return f"""units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-newton off
-comm_modify vel yes
-read_data bed.lammps.data
-neighbor {skin} bin
-neigh_modify delay 0 every 1 check yes
-pair_style granular
-pair_coeff * * {coeffs}
-fix wz all wall/gran granular {coeffs} zplane {-depth} NULL
-fix wx all wall/gran granular {coeffs} xplane {-side / 2} {side / 2}
-fix wy all wall/gran granular {coeffs} yplane {-side / 2} {side / 2}
-fix g all gravity 9.81 vector 0 0 -1
-fix nve all nve/sphere
-timestep {ck['dt']}
-thermo {steps}
-run {steps}
-"""
+def atom_types(data):
+    """The 'N atom types' of a LAMMPS data file's header."""
+    with open(data) as f:
+        for line in f:
+            m = re.match(r"\s*(\d+)\s+atom types", line)
+            if m:
+                return int(m.group(1))
+    raise RuntimeError(f"no 'atom types' line in {data}")
 
 
 def liggghts_youngs(ck):
@@ -145,11 +93,21 @@ def liggghts_restitution(factor):
     return math.exp(-math.pi * factor / math.sqrt(4.0 - factor * factor))
 
 
-def liggghts_input(ck, steps):
+def liggghts_input(ck, steps, data, types):
+    """LIGGGHTS 3.8 input for the problem of CK (ck_dem_bench's JSON), reading DATA (the LAMMPS
+    deck's data file, TYPES atom types, all of one material) in a shrink-wrapped box as the
+    LAMMPS deck does."""
     Y = liggghts_youngs(ck)
     eps = liggghts_restitution(ck["damping_factor_n"])
     side, depth = ck["side"], ck["depth"]
     skin = 0.2 * ck["radius"]
+
+    def per_type(v):
+        return " ".join([str(v)] * types)
+
+    def per_pair(v):
+        return f"{types} " + " ".join([str(v)] * (types * types))
+
     model = "model hooke tangential history rolling_friction epsd2"
     walls = "\n".join(
         f"fix w{i} all wall/gran {model} primitive type 1 {plane} {value} limitForce on"
@@ -157,19 +115,19 @@ def liggghts_input(ck, steps):
                                             ("yplane", -side / 2), ("yplane", side / 2)]))
     return f"""atom_style granular
 atom_modify map array
-boundary f f f
+boundary m m m
 newton off
 communicate single vel yes
 units si
 hard_particles yes
-read_data bed.liggghts.data
+read_data {data}
 neighbor {skin} bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype {Y}
-fix m2 all property/global poissonsRatio peratomtype 0.25
-fix m3 all property/global coefficientRestitution peratomtypepair 1 {eps}
-fix m4 all property/global coefficientFriction peratomtypepair 1 {MU_S}
-fix m5 all property/global coefficientRollingFriction peratomtypepair 1 {MU_R * BETA / 2}
+fix m1 all property/global youngsModulus peratomtype {per_type(Y)}
+fix m2 all property/global poissonsRatio peratomtype {per_type(0.25)}
+fix m3 all property/global coefficientRestitution peratomtypepair {per_pair(eps)}
+fix m4 all property/global coefficientFriction peratomtypepair {per_pair(MU_S)}
+fix m5 all property/global coefficientRollingFriction peratomtypepair {per_pair(MU_R * BETA / 2)}
 fix m6 all property/global characteristicVelocity scalar {ck['speed']}
 pair_style gran {model} limitForce on
 pair_coeff * *
@@ -182,34 +140,61 @@ run {steps}
 """
 
 
-def run_round(args, exe, work, bed, xyz, skip):
+def write_decks(args, exe, work, bed):
+    """The peers' decks for the bed BED and args.steps steps: LAMMPS' by CraterKit's writer
+    (ck_dem_bench lammps-deck) into WORK/lammps, LIGGGHTS' input into WORK/liggghts reading the
+    same data file. Returns ck_dem_bench's JSON (the problem's parameters)."""
+    lammps = os.path.join(work, "lammps")
+    out, _ = run([exe, "lammps-deck", bed, str(args.steps), lammps])
+    ck = json.loads(out.strip().splitlines()[-1])
+    with open(os.path.join(lammps, ck["input"])) as f:
+        runs = re.findall(r"^run (\d+)", f.read(), re.M)
+    if runs != [str(args.steps)]:  # one run of the timed steps, whose "Loop time" is read
+        raise RuntimeError(f"the LAMMPS deck runs {runs} steps, not [{args.steps}]")
+    data = os.path.join(lammps, ck["data"])
+    liggghts = os.path.join(work, "liggghts")
+    os.makedirs(liggghts, exist_ok=True)
+    with open(os.path.join(liggghts, "in.liggghts"), "w") as f:
+        f.write(liggghts_input(ck, args.steps, os.path.relpath(data, liggghts), atom_types(data)))
+    return ck
+
+
+def run_round(args, exe, work, bed, ck, skip):
     """One round: CraterKit on 1 and 2 threads, then the peers, back to back. Returns the
-    step-loop seconds by code and CraterKit's JSON line."""
+    step-loop seconds by code."""
     results = {}
     hashes = set()
     for threads in (1, 2):
         env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_PROC_BIND="false")
         log(f"[2/4] CraterKit, {threads} thread(s), {args.steps} steps")
         out, _ = run([exe, "run", bed, str(args.steps)], env=env)
-        ck = json.loads(out.strip().splitlines()[-1])
-        results[f"CraterKit {threads}T"] = ck["seconds"]
-        hashes.add(ck["state_hash"])
+        mine = json.loads(out.strip().splitlines()[-1])
+        if mine["particles"] != ck["particles"] or mine["dt"] != ck["dt"] or mine["kn"] != ck["kn"]:
+            raise RuntimeError("CraterKit's run and the peers' decks differ in the problem")
+        results[f"CraterKit {threads}T"] = mine["seconds"]
+        hashes.add(mine["state_hash"])
     if len(hashes) != 1:  # the solver promises the same bits on any number of threads
         raise RuntimeError(f"CraterKit's final states differ between 1 and 2 threads: {hashes}")
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    peers = [("lammps", "LAMMPS", "lmp", "sphere", lammps_input, "[3/4] LAMMPS, 2 MPI ranks"),
-             ("liggghts", "LIGGGHTS", "liggghts", "granular", liggghts_input,
+    peers = [("lammps", "LAMMPS", ["lmp", "-in", ck["input"], "-log", "log.lammps"],
+              "[3/4] LAMMPS, 2 MPI ranks, CraterKit's deck"),
+             ("liggghts", "LIGGGHTS", ["liggghts", "-in", "in.liggghts", "-log", "log.liggghts"],
               "[4/4] LIGGGHTS 3.8, 2 MPI ranks (no twisting model)")]
-    for key, name, executable, style, make_input, message in peers:
+    for key, name, command, message in peers:
         if key in skip:
             continue
         log(message)
-        write_data(os.path.join(work, f"bed.{key}.data"), ck, xyz, style)
-        with open(os.path.join(work, f"in.{key}"), "w") as f:
-            f.write(make_input(ck, args.steps))
-        out, _ = run(mpirun(2) + [executable, "-in", f"in.{key}", "-log", f"log.{key}"], env=env, cwd=work)
+        cwd = os.path.join(work, key)
+        if key == "lammps":  # the deck appends its final state to its dump
+            dump = os.path.join(cwd, "dump.craterkit")
+            if os.path.exists(dump):
+                os.remove(dump)
+        out, _ = run(mpirun(2) + command, env=env, cwd=cwd)
+        grid = re.search(r"(\d+ by \d+ by \d+) MPI processor grid", out)
+        log(f"      {grid.group(1) if grid else 'unknown'} processor grid, "
+            f"loop {loop_time(out):.3f} s")
         results[f"{name} 2 ranks"] = loop_time(out)
-    return results, ck
+    return results
 
 
 def spread(values):
@@ -267,13 +252,15 @@ def main():
         log(f"      {out.strip().splitlines()[-1]} in {secs:.0f} s")
     else:
         log(f"[1/4] using the cached bed {bed}")
-    side, depth, xyz = read_bed(bed)
+    log(f"      the peers' decks in {work}/lammps (CraterKit's LAMMPS deck writer) and "
+        f"{work}/liggghts")
+    ck = write_decks(args, exe, work, bed)
 
     skip = set(filter(None, args.skip.split(",")))
     rounds = []
     for r in range(1, args.repeat + 1):
         log(f"round {r} of {args.repeat}")
-        results, ck = run_round(args, exe, work, bed, xyz, skip)
+        results = run_round(args, exe, work, bed, ck, skip)
         rounds.append(results)
         log(f"      round {r}: " + ", ".join(f"{code} {secs:.3f} s" for code, secs in results.items()))
     report(rounds, ck, args.steps)

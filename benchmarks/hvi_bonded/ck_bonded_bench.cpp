@@ -1,8 +1,11 @@
 // CraterKit side of the bonded hypervelocity benchmark (see run.py beside this file): the
 // headline impact of Watson & Steinhauser 2017 (seed 003) at a chosen particle count.
-//   ck_bonded_bench data FILE PARTICLES    write the set-up as a LAMMPS data file (atom_style
-//                                          bond: lattice, jitter velocities, bonds) and print
-//                                          the law and time step
+//   ck_bonded_bench lammps-deck DIR PARTICLES STEPS WARMUP
+//                                          write the set-up as the LAMMPS deck CraterKit's writer
+//                                          makes (bonded/BondedLammpsDeck.h, Eq. 4's pull-only
+//                                          bond table: DIR/in.craterkit, data.craterkit,
+//                                          bond.table), running WARMUP steps and then STEPS
+//                                          more, and print the law and time step
 //   ck_bonded_bench run PARTICLES STEPS [WARMUP]
 //                                          run WARMUP untimed steps, then STEPS timed ones of
 //                                          the same set-up; print timings
@@ -15,6 +18,7 @@
 // All print one JSON object on the last line; checkpoint, continue and resume also a hash of the
 // final positions and velocities (equal hashes: bit-identical states).
 #include "bonded/BondedBody.h"
+#include "bonded/BondedLammpsDeck.h"
 #include "bonded/BondedSolver.h"
 
 #include <omp.h>
@@ -26,7 +30,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
-#include <stdexcept>
 #include <string>
 
 using namespace craterkit;
@@ -37,41 +40,6 @@ BondedSystem headline(double particles) {
   BondedImpactParams p; // the paper's headline case: 9.53 mm Al sphere, 6.7 km/s, t/D 0.425
   p.particleCount = particles;
   return buildBondedImpact(p);
-}
-
-void writeData(const std::string& path, const BondedSystem& s) {
-  FILE* f = std::fopen(path.c_str(), "w");
-  if (!f)
-    throw std::runtime_error("cannot write " + path);
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (std::size_t i = 0; i < s.size(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], s.positions[3 * i + k]);
-      hi[k] = std::max(hi[k], s.positions[3 * i + k]);
-    }
-  const double pad = 2.0 * s.law.sigma;
-  std::fprintf(f,
-               "CraterKit bonded HVI benchmark\n\n%zu atoms\n2 atom types\n%zu bonds\n"
-               "1 bond types\n\n",
-               s.size(), s.bonds.size());
-  const char* axis[3] = {"x", "y", "z"};
-  for (int k = 0; k < 3; ++k)
-    std::fprintf(f, "%.17g %.17g %slo %shi\n", lo[k] - pad, hi[k] + pad, axis[k], axis[k]);
-  double mass[2] = {0.0, 0.0}; // one mass per body (Eq. 20)
-  for (std::size_t i = 0; i < s.size(); ++i)
-    mass[s.body[i]] = s.masses[i];
-  std::fprintf(f, "\nMasses\n\n1 %.17g\n2 %.17g\n\nAtoms # bond\n\n", mass[0], mass[1]);
-  for (std::size_t i = 0; i < s.size(); ++i)
-    std::fprintf(f, "%zu %d %d %.17g %.17g %.17g\n", i + 1, s.body[i] + 1, s.body[i] + 1,
-                 s.positions[3 * i], s.positions[3 * i + 1], s.positions[3 * i + 2]);
-  std::fprintf(f, "\nVelocities\n\n");
-  for (std::size_t i = 0; i < s.size(); ++i)
-    std::fprintf(f, "%zu %.17g %.17g %.17g\n", i + 1, s.velocities[3 * i], s.velocities[3 * i + 1],
-                 s.velocities[3 * i + 2]);
-  std::fprintf(f, "\nBonds\n\n");
-  for (std::size_t b = 0; b < s.bonds.size(); ++b)
-    std::fprintf(f, "%zu 1 %u %u\n", b + 1, s.bonds[b].i + 1, s.bonds[b].j + 1);
-  std::fclose(f);
 }
 
 // FNV-1a over the bytes of the positions and velocities.
@@ -127,21 +95,34 @@ int checkpointMode(const std::string& mode, int argc, char** argv) {
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::cerr << "usage: ck_bonded_bench data FILE PARTICLES | run PARTICLES STEPS [WARMUP] | "
-                 "checkpoint FILE PARTICLES STEPS | continue FILE STEPS | resume FILE STEPS\n";
+    std::cerr << "usage: ck_bonded_bench lammps-deck DIR PARTICLES STEPS WARMUP | "
+                 "run PARTICLES STEPS [WARMUP] | checkpoint FILE PARTICLES STEPS | "
+                 "continue FILE STEPS | resume FILE STEPS\n";
     return 2;
   }
   const std::string mode = argv[1];
   if (mode == "checkpoint" || mode == "continue" || mode == "resume")
     return checkpointMode(mode, argc, argv);
-  if (mode == "data") {
+  if (mode == "lammps-deck") {
+    if (argc < 6) {
+      std::cerr << "usage: ck_bonded_bench lammps-deck DIR PARTICLES STEPS WARMUP\n";
+      return 2;
+    }
     const BondedSystem s = headline(std::atof(argv[3]));
-    writeData(argv[2], s);
+    const long steps = std::atol(argv[4]), warmup = std::max(0L, std::atol(argv[5]));
     const BondedSolver solver(s); // its time step: the paper's 1e-10 s scaled with sigma
-    std::printf("{\"particles\": %zu, \"bonds\": %zu, \"sigma\": %.17g, \"epsilon\": %.17g, "
-                "\"kappa\": %.17g, \"r_cut\": %.17g, \"r_eq\": %.17g, \"dt\": %.17g}\n",
-                s.size(), s.bonds.size(), s.law.sigma, s.law.epsilon, s.law.kappa, s.law.rCut,
-                s.law.rEq(), solver.timeStep());
+    BondedDeckParams deck;        // the default bond style: Eq. 4, as BondedSolver
+    deck.timeStep = solver.timeStep();
+    // The deck runs to each output time in turn: WARMUP steps, then the STEPS timed ones.
+    if (warmup > 0)
+      deck.outputTimes.push_back(static_cast<double>(warmup) * deck.timeStep);
+    deck.outputTimes.push_back(static_cast<double>(warmup + steps) * deck.timeStep);
+    writeBondedLammpsDeck(argv[2], s, {}, deck);
+    std::printf("{\"input\": \"%s\", \"particles\": %zu, \"bonds\": %zu, \"sigma\": %.17g, "
+                "\"epsilon\": %.17g, \"kappa\": %.17g, \"r_cut\": %.17g, \"r_eq\": %.17g, "
+                "\"dt\": %.17g}\n",
+                deck.inputFile.c_str(), s.size(), s.bonds.size(), s.law.sigma, s.law.epsilon,
+                s.law.kappa, s.law.rCut, s.law.rEq(), solver.timeStep());
     return 0;
   }
   const long steps = std::atol(argv[3]);
