@@ -88,10 +88,13 @@ int vtkCraterKitCraterProfile::RequestData(vtkInformation*, vtkInformationVector
       b::addField(fd, ("CraterDepth" + s).c_str(), m.depth);
       b::addField(fd, ("RimHeight" + s).c_str(), m.rimHeight);
       b::addField(fd, ("ExcavatedVolume" + s).c_str(), m.volume);
+      b::addField(fd, ("CraterDepthBelowRim" + s).c_str(), m.depthBelowRim);
     };
     put("", r.all);
     put("Negative", r.negativeHalf);
     put("Positive", r.positiveHalf);
+    b::addField(fd, "DeepestPointDepth", r.deepestDepth);
+    b::addField(fd, "DeepestPointDepthBelowRim", r.deepestDepthBelowRim);
     b::addField(fd, "SurfaceHeight", p.surfaceHeight);
     b::addField(fd, "RejectedAsEjecta", static_cast<double>(r.rejectedAsEjecta));
     b::addField(fd, "ImpactAxis", this->ImpactAxis, 2);

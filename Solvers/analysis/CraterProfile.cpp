@@ -63,6 +63,7 @@ CraterMeasures measureProfile(const std::vector<double>& radius, const std::vect
     ++last;
   m.rimDiameter = r[first] + r[last];
   m.rimHeight = h[rim] - z0;
+  m.depthBelowRim = h[rim] - h[lowest];
   // Excavated volume inside the edge (trapezoids of 2π r (z0 − h) dr).
   auto depthAt = [&](std::size_t j) { return std::max(0.0, z0 - h[j]); };
   double prevR = 0.0, prevF = 0.0; // the integrand 2π r (z0 − h) vanishes on the axis
@@ -101,7 +102,7 @@ CraterProfileResult craterProfile(const std::vector<double>& positions,
   const std::size_t n = radii.size();
   if (n == 0 || positions.size() != 3 * n)
     throw InputError("CraterProfile: no particles (or positions and radii of different counts)");
-  double rmean = 0.0, extent = 0.0, rmax = 0.0;
+  double rmean = 0.0, extent = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!(radii[i] > 0.0) || !std::isfinite(radii[i]))
       throw InputError("CraterProfile: particle " + std::to_string(i) +
@@ -111,7 +112,6 @@ CraterProfileResult craterProfile(const std::vector<double>& positions,
         throw InputError("CraterProfile: particle " + std::to_string(i) +
                          " has a non-finite position");
     rmean += radii[i];
-    rmax = std::max(rmax, radii[i]);
     extent = std::max(
         extent, std::hypot(positions[3 * i] - par.axis[0], positions[3 * i + 1] - par.axis[1]));
   }
@@ -122,17 +122,18 @@ CraterProfileResult craterProfile(const std::vector<double>& positions,
   const int na = par.azimuthalBins;
   const double dr = R / nr;
 
-  // Bulk particles: enough neighbours close by (isolated ejecta have none).
+  // Bulk particles: enough neighbours close by (isolated ejecta have none). Each particle
+  // searches its own range on cells of the mean range, so that a large body does not make
+  // every particle scan the cells of its size.
   CellList cells;
-  const double reach = par.neighbourFactor * rmax;
-  cells.build(positions.data(), n, reach);
+  cells.build(positions.data(), n, par.neighbourFactor * rmean);
   std::vector<char> bulk(n, 0);
 #pragma omp parallel for schedule(dynamic, 1024)
   for (std::size_t i = 0; i < n; ++i) {
     int count = 0;
     const double* x = &positions[3 * i];
     const double range = par.neighbourFactor * radii[i];
-    cells.forEachCandidate(x, reach, [&](std::size_t j) {
+    cells.forEachCandidate(x, range, [&](std::size_t j) {
       if (j == i)
         return;
       const double* y = &positions[3 * j];
@@ -206,6 +207,19 @@ CraterProfileResult craterProfile(const std::vector<double>& positions,
   out.all = measureProfile(out.radius, out.height, par.surfaceHeight, tolerance);
   out.negativeHalf = measureProfile(out.radius, neg, par.surfaceHeight, tolerance);
   out.positiveHalf = measureProfile(out.radius, pos, par.surfaceHeight, tolerance);
+  if (out.all.found) {
+    double lowest = INFINITY;
+    for (int ir = 0; ir < nr && (ir + 0.5) * dr <= 0.5 * out.all.diameter; ++ir)
+      for (int ia = 0; ia < na; ++ia) {
+        const double t = top[static_cast<std::size_t>(ir) * na + ia];
+        if (std::isfinite(t)) // an empty bin has no top
+          lowest = std::min(lowest, t);
+      }
+    if (std::isfinite(lowest)) {
+      out.deepestDepth = par.surfaceHeight - lowest;
+      out.deepestDepthBelowRim = out.all.rimHeight + out.deepestDepth;
+    }
+  }
   return out;
 }
 

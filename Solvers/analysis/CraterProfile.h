@@ -5,14 +5,22 @@
 // particles within `neighbourFactor` of its radius), so isolated ejecta above the surface do
 // not count. The azimuthal average of the bins gives the profile h(r). From it, measured
 // against the original surface z0:
-//   - depth: z0 minus the lowest point of the profile;
+//   - depth: z0 minus the lowest point of the profile (below the original surface);
+//   - depth below the rim: the rim crest's height minus that lowest point (rim crest to floor,
+//     the depth of remote-sensing crater catalogues);
 //   - diameter: twice the radius where the profile first rises back to z0 from the centre;
 //   - rim: the highest point of the profile between that radius and twice it (rim-to-rim
 //     diameter, height), its radius the middle of the bins within a quarter particle diameter
 //     of the highest; a rim height below that tolerance means no raised rim;
 //   - excavated volume: ∫ 2π r max(0, z0 − h(r)) dr inside the diameter.
 // The same measures are made for each side of the section through the axis (the azimuthal
-// bins within 60° of −x and of +x), for the asymmetry.
+// bins within 60° of −x and of +x), for the asymmetry. The deepest point is the lowest single
+// (radial, azimuthal) bin's top inside the crater's edge, not averaged over azimuth: a central
+// pit narrower than a ring of bins shows there first.
+//
+// Particles count as bulk by their own range (neighbourFactor times their radius), searched on
+// cells sized by the mean radius: one large body among small grains (an impactor) widens only
+// its own search, not every particle's.
 #pragma once
 
 #include <cstddef>
@@ -35,13 +43,17 @@ struct CraterProfileParams {
 
 struct CraterMeasures {
   double depth = 0.0, diameter = 0.0, rimDiameter = 0.0, rimHeight = 0.0, volume = 0.0;
-  bool found = false; // false when the profile never dips below z0
+  double depthBelowRim = 0.0; // rim crest to the profile's lowest point
+  bool found = false;         // false when the profile never dips below z0
 };
 
 struct CraterProfileResult {
   std::vector<double> radius, height; // the profile: bin centres and h(r) (NaN where empty)
   std::vector<int> binsUsed;          // azimuthal bins contributing to each radial bin
   CraterMeasures all, negativeHalf, positiveHalf; // whole profile, x < axis, x > axis
+  // The lowest single bin's top inside the crater's edge: its depth below z0 and below the
+  // rim crest of the whole profile (0 when no crater was found).
+  double deepestDepth = 0.0, deepestDepthBelowRim = 0.0;
   std::vector<std::size_t> slab; // particles within slabHalfWidth of the x–z plane through the axis
   std::size_t surfaceParticles = 0, rejectedAsEjecta = 0;
 };

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -85,6 +86,109 @@ TEST(CraterProfile, RecoversTheDimensionsOfASyntheticCrater) {
   EXPECT_DOUBLE_EQ(b.all.rimDiameter, a.all.rimDiameter);
   EXPECT_DOUBLE_EQ(b.all.depth, a.all.depth);
   EXPECT_FALSE(a.slab.empty());
+}
+
+// The two depths (below the original surface; rim crest to floor) and the deepest point: a pit
+// 0.3 m deep, 1 m wide, cut into the bowl's wall off the axis, fills only a few of the
+// azimuthal bins of its rings, so the azimuthal mean barely sees it and the deepest single bin
+// does.
+TEST(CraterProfile, DepthBelowTheRimAndTheDeepestPoint) {
+  std::vector<double> x, rad;
+  crater(x, rad);
+  const double pitX = 0.8, pitR = 0.5, pitDepth = 0.3;
+  std::vector<double> xp, radp;
+  for (std::size_t i = 0; i < rad.size(); ++i) {
+    const double r = std::hypot(x[3 * i], x[3 * i + 1]);
+    if (std::hypot(x[3 * i] - pitX, x[3 * i + 1]) < pitR &&
+        x[3 * i + 2] + kRp > surface(r) - pitDepth)
+      continue;
+    xp.insert(xp.end(), {x[3 * i], x[3 * i + 1], x[3 * i + 2]});
+    radp.push_back(kRp);
+  }
+  CraterProfileParams par;
+  par.maxRadius = 4.5;
+  const CraterProfileResult a = craterProfile(xp, radp, par);
+  const CraterMeasures t = truth();
+  const double dp = 2.0 * kRp;
+  // The pit's lowest point: its edge nearest the axis, the bowl's depth there plus the pit's.
+  const double deepest = -(surface(pitX - pitR) - pitDepth);
+  std::printf("depth %.3f below the surface (true %.3f), %.3f below the rim (%.3f); deepest point "
+              "%.3f (at most %.3f), %.3f below the rim\n",
+              a.all.depth, t.depth, a.all.depthBelowRim, t.depth + t.rimHeight, a.deepestDepth,
+              deepest, a.deepestDepthBelowRim);
+  ASSERT_TRUE(a.all.found);
+  // Each surface is the particles' top, up to one diameter below the true one: the difference
+  // of two such heights is within one diameter of the true difference.
+  EXPECT_NEAR(a.all.depthBelowRim, t.depth + t.rimHeight, dp);
+  EXPECT_DOUBLE_EQ(a.all.depthBelowRim, a.all.depth + a.all.rimHeight);
+  EXPECT_NEAR(a.all.depth, t.depth, dp); // the mean profile's lowest point is the axis's
+  EXPECT_GT(a.deepestDepth, a.all.depth + pitDepth / 3.0); // the single bins see the pit
+  EXPECT_LE(a.deepestDepth, deepest + dp);
+  EXPECT_DOUBLE_EQ(a.deepestDepthBelowRim, a.deepestDepth + a.all.rimHeight);
+}
+
+// One large body among small grains (radius ratio 10, an impactor in its bed): the ejecta
+// filter's verdict equals a brute-force count of each particle's neighbours within its own
+// range, wherever the body lies, and a body outside the profile changes none of its measures.
+namespace {
+std::size_t bruteForceRejected(const std::vector<double>& x, const std::vector<double>& rad,
+                               const CraterProfileParams& par) {
+  std::size_t rejected = 0;
+  for (std::size_t i = 0; i < rad.size(); ++i) {
+    if (std::hypot(x[3 * i], x[3 * i + 1]) >= par.maxRadius)
+      continue;
+    int count = 0;
+    const double range = par.neighbourFactor * rad[i];
+    for (std::size_t j = 0; j < rad.size(); ++j) {
+      const double dx = x[3 * i] - x[3 * j], dy = x[3 * i + 1] - x[3 * j + 1],
+                   dz = x[3 * i + 2] - x[3 * j + 2];
+      count += j != i && dx * dx + dy * dy + dz * dz < range * range;
+    }
+    rejected += count < par.minNeighbours;
+  }
+  return rejected;
+}
+} // namespace
+
+TEST(CraterProfile, OneLargeBodyAmongSmallGrainsChangesNothingButItself) {
+  // A small pitted bed (a few thousand grains, so that the brute force stays cheap): a cubic
+  // lattice of grains of radius r under a conical pit, and isolated ejecta above it.
+  const double r = 0.05, d = 2.0 * r;
+  std::vector<double> x, rad;
+  for (double px = -1.0 + r; px < 1.0; px += d)
+    for (double py = -1.0 + r; py < 1.0; py += d) {
+      const double top = -0.3 * std::max(0.0, 1.0 - std::hypot(px, py) / 0.6);
+      for (double pz = -0.5 + r; pz + r <= top; pz += d)
+        x.insert(x.end(), {px, py, pz}), rad.push_back(r);
+    }
+  Random rng(11);
+  for (int k = 0; k < 30; ++k) {
+    const double rr = rng.uniform(0.0, 0.9), phi = rng.uniform(0.0, 2.0 * M_PI);
+    x.insert(x.end(), {rr * std::cos(phi), rr * std::sin(phi), rng.uniform(0.5, 2.0)});
+    rad.push_back(r);
+  }
+  CraterProfileParams par;
+  par.maxRadius = 0.95;
+  par.radialBins = 8;
+  par.surfaceHeight = -0.12; // just below the flat grains' tops (at -0.1), so the edge is found
+  const CraterProfileResult without = craterProfile(x, rad, par);
+  ASSERT_TRUE(without.all.found);
+  EXPECT_EQ(without.rejectedAsEjecta, bruteForceRejected(x, rad, par));
+  for (const std::array<double, 3> body : {std::array<double, 3>{1.2, 1.2, -0.2},   // outside
+                                           std::array<double, 3>{0.0, 0.0, -0.1},   // in the pit
+                                           std::array<double, 3>{0.3, 0.0, 1.0}}) { // in flight
+    std::vector<double> xb = x, radb = rad;
+    xb.insert(xb.end(), body.begin(), body.end());
+    radb.push_back(10.0 * r);
+    const CraterProfileResult with = craterProfile(xb, radb, par);
+    EXPECT_EQ(with.rejectedAsEjecta, bruteForceRejected(xb, radb, par));
+    if (body[0] > 1.0) {
+      EXPECT_EQ(with.rejectedAsEjecta, without.rejectedAsEjecta);
+      EXPECT_DOUBLE_EQ(with.all.diameter, without.all.diameter);
+      EXPECT_DOUBLE_EQ(with.all.depth, without.all.depth);
+      EXPECT_DOUBLE_EQ(with.deepestDepth, without.deepestDepth);
+    }
+  }
 }
 
 TEST(CraterProfile, FlatBedHasNoCraterAndBadInputIsNamed) {
