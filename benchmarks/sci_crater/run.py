@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
-"""Validation of the SCI example (issue: CraterProfile, FragmentAnalysis and the SCI crater):
-runs examples/sci_crater.py for RCP and HCP beds at two bed sizes on one SPH stage (the first
+"""Validation of the SCI example: runs examples/sci_crater.py for RCP and HCP beds at two bed sizes on one SPH stage (the first
 run's, handed to the others with --sph-state), and prints a table of crater diameter, rim
 diameter and depth against the pi-scaling prediction for the run and against the SCI crater,
 with the run read at Ryugu's gravity by pi-scaling (D x D_pi(Ryugu) / D_pi(run); in the gravity
 regime the crater's shape and D / D_pi would not depend on g, but these runs do: --gravity). Checks, printed as PASS/FAIL: at
-the largest RCP bed, the scaled diameter within 15 % of 14.5 m and the depth within 25 % of
-2.3 m; HCP smaller and shallower than RCP; the change between the two bed sizes.
+the largest RCP bed, the scaled diameter within 15 % and the depth within 25 % of the SCI crater's
+(craterkit.sci.SCI_CRATER); HCP smaller and shallower than RCP; the change between the two bed sizes.
+Exit status: 0 when every check passes, 1 when one fails, 3 when a run failed (then no
+summary.json is written, and an older one is removed first).
 
     benchmarks/sci_crater/run.py                         # g = 1000, RCP and HCP, 3e4 and 1e5 grains
     benchmarks/sci_crater/run.py --particles 6000 --packings RCP
@@ -24,7 +25,10 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SCI = {"diameter": 14.5, "rim_diameter": 18.0, "depth": 2.3}  # m (Zhang et al. 2021)
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from craterkit.sci import SCI_CRATER as SCI  # noqa: E402
+
+RUN_FAILED = 3  # the exit status when a run failed (1 is a failed check)
 
 
 def main(argv):
@@ -40,6 +44,9 @@ def main(argv):
     args = p.parse_args(own)
     rows = []
     sph_state = args.sph_state
+    summary_path = os.path.join(args.output, "summary.json")
+    if os.path.exists(summary_path):
+        os.remove(summary_path)  # what an earlier run found must not stand for this one
     for n in args.particles:
         for packing in args.packings:
             out = os.path.join(args.output, f"{packing}_{n}")
@@ -50,10 +57,12 @@ def main(argv):
             print(f"== {packing}, {n} grains: {' '.join(cmd[1:])}", flush=True)
             start = time.time()
             code = subprocess.call(cmd)
-            if code != 0:
-                print(f"error: the run exited with {code}", file=sys.stderr)
-                return code
-            r = json.load(open(os.path.join(out, "report.json")))
+            report = os.path.join(out, "report.json")
+            if code != 0 or not os.path.exists(report) or os.path.getmtime(report) < start - 1.0:
+                print(f"error: the run exited with {code}" + ("" if code else " and wrote no report.json"),
+                      file=sys.stderr)
+                return RUN_FAILED
+            r = json.load(open(report))
             r["wall_s"] = round(time.time() - start, 1)
             rows.append((packing, n, r))
             if not sph_state:
@@ -104,7 +113,7 @@ def main(argv):
             if a and b and a["crater_diameter_m"] and b["crater_diameter_m"]:
                 print(f"{packing}: D changes by {b['crater_diameter_m'] / a['crater_diameter_m'] - 1.0:+.1%} and the "
                       f"depth by {b['crater_depth_m'] / a['crater_depth_m'] - 1.0:+.1%} from {small} to {largest} grains")
-    with open(os.path.join(args.output, "summary.json"), "w") as f:
+    with open(summary_path, "w") as f:
         json.dump(summary, f, indent=1)
     return 0 if all(summary["checks"]) else 1
 

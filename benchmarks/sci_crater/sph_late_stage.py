@@ -18,8 +18,7 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
-from craterkit import fetch, fetch_stage, field_value, impactor_depth, load_plugin, material_value  # noqa: E402
-from craterkit.scaling import crater_diameter  # noqa: E402
+from craterkit import fetch, fetch_stage, field_value, impactor_depth, load_plugin, sci  # noqa: E402
 
 
 def say(message):
@@ -57,11 +56,9 @@ def main():
             extra[key] = value  # a string property such as MaterialDirectory
 
     simple = load_plugin()
-    rho_imp = material_value(args.impactor_material, "rho0")
-    rho_bulk = material_value("regolith", "rho0") / material_value("regolith", "distention", 1.0)
-    if extra.get("TargetPorosity", -1.0) >= 0.0:
-        rho_bulk = material_value("regolith", "rho0") * (1.0 - extra["TargetPorosity"])
-    d_pi = crater_diameter(args.impactor_mass, args.impact_speed, rho_imp, rho_bulk, args.gravity)
+    sc = sci.scales(args.gravity, args.impactor_mass, args.impact_speed, args.impactor_material, "regolith",
+                    extra.get("TargetPorosity", -1.0))
+    d_pi, rho_imp, rho_bulk = sc.d_pi, sc.rho_impactor, sc.rho_bulk
     sph = simple.SPHImpact(ImpactorMaterial=args.impactor_material, ImpactorMass=args.impactor_mass,
                            ImpactSpeed=args.impact_speed, SurfaceGravity=args.gravity,
                            ParticlesAcrossImpactor=args.resolution, TargetRadius=args.target_radius,

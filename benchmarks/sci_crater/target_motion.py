@@ -8,48 +8,56 @@ vertical momentum, kinetic energy and mean vertical velocity:
     r>12    beyond 12 m (fast ejecta, most of them outside the domain)
 
 The bulk's mean vertical velocity is what the hand-off maps onto the bed besides the crater's
-own flow (docs/validation.md, "Depth and the SPH resolution", point 11). Stdlib only.
+own flow (docs/validation_history.md, "Depth and the SPH resolution", point 11). The checkpoint
+is read by the plugin's own reader, the one ParaView opens .cksph files with.
 
-    python3 benchmarks/sci_crater/target_motion.py CHECKPOINT...
+    scripts/pvbatch benchmarks/sci_crater/target_motion.py CHECKPOINT...
 
 The SCI checkpoints at the hand-off are the sph.cksph that `examples/sci_crater.py` writes in
 its output folder.
 """
 
-import math
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from impactor_resolution import read_checkpoint  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from craterkit import fetch, field_value, load_plugin  # noqa: E402
 
 REGIONS = ("above", "r<6", "r6-12", "r>12")
 
 
-def region(x, y, z):
-    r = math.sqrt(x * x + y * y + z * z)
-    if r > 12.0:
-        return "r>12"
-    if z > 0.3:
-        return "above"
-    return "r<6" if r < 6.0 else "r6-12"
+def regions_of(x):
+    """The region of each particle at positions X (n x 3), as indices into REGIONS."""
+    import numpy as np
+    r = np.linalg.norm(x, axis=1)
+    out = np.where(r < 6.0, 1, 2)
+    out[x[:, 2] > 0.3] = 0
+    out[r > 12.0] = 3
+    return out
 
 
 def target_motion(path):
-    """Returns (time, {region: [count, mass, z momentum, kinetic energy]})."""
-    t, n, f = read_checkpoint(path)
-    x, v, m, mat = f["x"], f["v"], f["m"], f["mat"]
-    out = {k: [0, 0.0, 0.0, 0.0] for k in REGIONS}
-    for i in range(n):
-        if mat[i] != 1:
-            continue
-        a = out[region(x[3 * i], x[3 * i + 1], x[3 * i + 2])]
-        vx, vy, vz = v[3 * i], v[3 * i + 1], v[3 * i + 2]
-        a[0] += 1
-        a[1] += m[i]
-        a[2] += m[i] * vz
-        a[3] += 0.5 * m[i] * (vx * vx + vy * vy + vz * vz)
-    return t, out
+    """Returns (time, {region: [count, mass, z momentum, kinetic energy]}) of the checkpoint."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    simple = load_plugin()
+    try:
+        data = fetch(simple.OpenDataFile(path))
+    except RuntimeError as error:
+        sys.exit(f"{path}: {error}")
+    if data is None or data.GetNumberOfPoints() == 0 or data.GetPointData().GetArray("Material") is None:
+        sys.exit(f"{path}: not a readable SPH checkpoint (see the message above)")
+    pd = data.GetPointData()
+    target = vtk_to_numpy(pd.GetArray("Material")) == 1
+    x = vtk_to_numpy(data.GetPoints().GetData())[target]
+    v = vtk_to_numpy(pd.GetArray("Velocity"))[target]
+    m = vtk_to_numpy(pd.GetArray("Mass"))[target]
+    where = regions_of(x)
+    out = {}
+    for k, name in enumerate(REGIONS):
+        s = where == k
+        out[name] = [int(s.sum()), float(m[s].sum()), float((m[s] * v[s, 2]).sum()),
+                     float((0.5 * m[s] * (v[s] ** 2).sum(axis=1)).sum())]
+    return field_value(data, "Time"), out
 
 
 def main(argv):

@@ -35,15 +35,11 @@ import time
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkObject, vtkPoints
+from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 
-from craterkit import fetch, fetch_stage, field_value, load_plugin, material_value, print_progress
+from craterkit import fetch_stage, field_value, load_plugin, sci
 from craterkit.cross_section import crater_measures, render_cross_section
-from craterkit.scaling import crater_diameter, formation_time
-
-SCI_IMPACT = {"mass": 2.0, "speed": 2000.0, "impactor": "copper", "target": "regolith"}
-RCP_PACKING = 0.60  # as examples/sci_crater.py: the grain density that gives the target's bulk density
 # The speed the SCI crater's DEM stage at Ryugu's gravity sets its contacts for: 1.5 times the
 # fastest grain after the hand-off (report.json's dem_max_expected_speed_m_s).
 CRATER_STAGE_SPEED = 0.0663
@@ -91,33 +87,21 @@ class SciBed:
     SCI example measures the crater against) and its packing fraction."""
 
     def __init__(self, args):
-        rho_imp = material_value(SCI_IMPACT["impactor"], "rho0")
-        target = SCI_IMPACT["target"]
-        self.rho_bulk = material_value(target, "rho0") / material_value(target, "distention")
-        self.d_pi = crater_diameter(SCI_IMPACT["mass"], SCI_IMPACT["speed"], rho_imp, self.rho_bulk, args.gravity)
-        self.t_scale = formation_time(self.d_pi, args.gravity)
-        self.bowl = 1.05 * self.d_pi
+        self.sc = sci.scales(args.gravity)
+        self.d_pi, self.t_scale, self.bowl = self.sc.d_pi, self.sc.t_scale, self.sc.bowl_radius
         if args.pit_diameter >= 2.0 * self.bowl:
             print(f"error: --pit-diameter {args.pit_diameter:g} m does not fit the bowl ({2 * self.bowl:.3g} m across)",
                   file=sys.stderr)
             raise SystemExit(2)
-        self.grain = self.bowl * (RCP_PACKING / (2.0 * args.particles)) ** (1.0 / 3.0)
+        self.grain = self.sc.grain_radius(args.particles, "RCP")
 
     def build(self, simple, args):
         print(f"D_pi {self.d_pi:.3g} m, sqrt(D_pi/g) {self.t_scale:.3g} s; bowl radius {self.bowl:.3g} m, grain "
               f"radius {self.grain:.3g} m, pit diameter {args.pit_diameter:.3g} m "
               f"({args.pit_diameter / (2 * self.grain):.0f} grain diameters)", flush=True)
         start = time.time()
-        bed = simple.GranularBed(Packing="RCP", Container="Bowl", ContainerRadius=self.bowl, ParticleRadius=self.grain,
-                                 SurfaceHeight=0.0, ParticleDensity=self.rho_bulk / RCP_PACKING,
-                                 SettlingGravity=args.gravity, SettlingFriction=args.settling_friction,
-                                 MaxParticles=max(10 * args.particles, 100000))
-        print_progress(bed, "bed")
-        self.data = fetch_stage(bed, "bed")
-        vtkObject.GlobalWarningDisplayOff()  # a flat bed has no crater: CraterProfile would say so
-        heights = fetch(simple.CraterProfile(Input=bed)).GetRowData().GetArray("Height")
-        vtkObject.GlobalWarningDisplayOn()
-        self.surface = float(np.nanmean(vtk_to_numpy(heights)))
+        _, self.data, self.surface, _ = sci.bed_stage(simple, self.sc, "RCP", args.particles, heading="",
+                                                      SettlingFriction=args.settling_friction)
         self.packing = field_value(self.data, "BulkPackingFraction")
         print(f"bed: {self.data.GetNumberOfPoints()} grains, packing fraction {self.packing:.3f}, surface at "
               f"{self.surface:.3g} m, {time.time() - start:.0f} s", flush=True)

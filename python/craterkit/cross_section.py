@@ -12,7 +12,9 @@ MEASURE_COLORS = {"diameter": [0.85, 0.1, 0.1], "rim": [0.1, 0.3, 0.9], "depth":
 
 def crater_measures(profile, time=None):
     """The summary of a CraterProfile proxy as a dict (diameter, rim_diameter, rim_height,
-    depth, volume, surface, found), at `time` for a time-dependent input: without it the
+    depth (below the original surface), depth_below_rim (rim crest to floor), deepest_depth and
+    deepest_depth_below_rim (the lowest single bin, not averaged over azimuth), volume, surface,
+    found), at `time` for a time-dependent input: without it the
     profile keeps the state it was first computed from, since a new time upstream does not
     modify the filter."""
     from paraview import servermanager
@@ -26,6 +28,8 @@ def crater_measures(profile, time=None):
         return array.GetValue(0) if array is not None else None
     return {"diameter": value("CraterDiameter"), "rim_diameter": value("RimDiameter"),
             "rim_height": value("RimHeight"), "depth": value("CraterDepth"),
+            "depth_below_rim": value("CraterDepthBelowRim"), "deepest_depth": value("DeepestPointDepth"),
+            "deepest_depth_below_rim": value("DeepestPointDepthBelowRim"),
             "volume": value("ExcavatedVolume"), "surface": value("SurfaceHeight"),
             "found": bool(value("CraterFound"))}
 
@@ -103,12 +107,17 @@ def render_cross_section(source, filename, half_width=None, color_by="Height",
         display.RescaleTransferFunctionToDataRange(True, False)
     display.SetScalarBarVisibility(view, True)
     bar = simple.GetScalarBar(lut, view)
-    bar.Title = "Height (m)" if color_by == "Height" else color_by
+    bar.Title = {"Height": "Height (m)", "Speed": "Speed (m/s)"}.get(color_by, color_by)
     bar.ComponentTitle = ""
     bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
     bar.WindowLocation = "Any Location"
     bar.Orientation = "Vertical"
-    bar.Position = [0.89, 0.15]
+    # The title above the bar and the labels on its left, inside the picture: a vertical title
+    # and labels to the right of a bar at the panel's edge are cut off in narrow panels.
+    bar.HorizontalTitle = 1
+    bar.TextPosition = "Ticks left/bottom, annotations right/top"
+    bar.RangeLabelFormat = "%.3g"
+    bar.Position = [0.9, 0.15]
     bar.ScalarBarLength = 0.6
 
     pad = 0.06 * (bounds[1] - bounds[0])
