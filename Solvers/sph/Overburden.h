@@ -5,7 +5,7 @@
 // by about g H² / 2c² and then rings at the period 4H/c with speeds of order g H / c, hardly
 // damped. In the SCI stage at Ryugu's gravity (H ≈ 11.6 m, c = 0.47 m/s) that scale is of order
 // 3 mm/s with a period of order 100 s, as fast as the late crater flow itself; what it changed
-// there is docs/validation.md, "Depth and the SPH resolution", point 11.
+// there is docs/validation_history.md, "Depth and the SPH resolution", point 11.
 //
 // With SphParams::overburdenDensity ρ_o > 0 the switch scales only each particle's departure
 // from the lithostatic pressure p_L = ρ_o |g| d (d: its depth below the surface plane, along g)

@@ -68,7 +68,7 @@ struct SphParams {
   // adjacent material (Adami, Hu & Adams 2012; sph/WallBoundary.h), or Dynamic, from their own
   // continuity density (dynamic boundary particles, Crespo et al. 2007; the rule before
   // 2026-12-05), whose pressure falls to zero under a dilating layer and alternates from row to
-  // row in a column at rest (docs/validation.md, "The infinite slope, analysed").
+  // row in a column at rest (docs/validation_history.md, "The infinite slope, analysed").
   enum class Walls { Extrapolated, Dynamic } walls = Walls::Extrapolated;
   // The artificial viscosity between a rigid particle and a non-rigid one, a factor on its
   // term (1: as between two material particles; 0, the default: none, as Adami et al.'s
@@ -76,7 +76,7 @@ struct SphParams {
   // only on approaching pairs, so material sliding over the wall's particle lattice is pushed
   // away by the wall particles ahead of it and not held by those behind: a lift growing with the
   // slip speed, which lifted a granular layer sliding at 1–3 m/s off its floor and lowered the
-  // floor's friction from 0.68 to 0.57 (docs/validation.md, "The infinite slope, analysed",
+  // floor's friction from 0.68 to 0.57 (docs/validation_history.md, "The infinite slope, analysed",
   // and sph/WallBoundary.h). The wall still holds the material by its extrapolated pressure
   // and its deviatoric stress. The impact set-up's container takes 1: it must absorb the shock
   // (sph/ImpactSetup.cpp).

@@ -31,8 +31,8 @@
 // c_b) v ρ, is 30 kPa at 1 m/s for the test soil (α = 0.5, K = 0.4 MPa), against 2.3 kPa of
 // weight on the floor of its 0.2 m layer. On the 40° slope it lifted the lowest soil row
 // off the floor after about 1 s, and the layer slid on it as a block at 2.02 m/s² against the
-// yield law's 1.10 (1.20 without it; docs/validation.md, "The infinite slope, analysed"). The
-// wall holds the material by its extrapolated pressure and, in shear, by its deviatoric stress,
+// yield law's 1.10 (1.20 without it; docs/validation_history.md, "The infinite slope, analysed").
+// The wall holds the material by its extrapolated pressure and, in shear, by its deviatoric stress,
 // whose rate takes the wall's own velocity (zero: no slip in the strain rate). The impact
 // set-up's container keeps the viscosity (factor 1) to absorb the shock; with the bilateral
 // form (receding pairs too) the lowest row stays down but a 40° layer still gains 1.81 m/s²

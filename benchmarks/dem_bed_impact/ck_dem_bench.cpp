@@ -104,16 +104,16 @@ Problem loadProblem(const std::string& file) {
 std::string problemJson(const Problem& pr) {
   const double m = kDensity * 4.0 / 3.0 * M_PI * std::pow(kRadius, 3);
   char buf[1024];
-  std::snprintf(buf, sizeof buf,
-                "\"particles\": %zu, \"kn\": %.17g, \"dt\": %.17g, \"mass\": %.17g, "
-                "\"radius\": %.17g, \"impactor_radius\": %.17g, \"speed\": %.17g, "
-                "\"side\": %.17g, \"depth\": %.17g, \"damping_factor_n\": %.17g, "
-                "\"damping_factor_t\": %.17g",
-                pr.particles.size(), pr.stiffness.kN, pr.dem.dt, m, kRadius, pr.impactor.radius,
-                kSpeed, pr.box.side, pr.box.depth,
-                clippedDampingFactor(NormalLawKind::LinearSpringDashpot,
-                                     pr.dem.contact.restitutionN),
-                dashpotFactor(pr.dem.contact.restitutionT));
+  std::snprintf(
+      buf, sizeof buf,
+      "\"particles\": %zu, \"kn\": %.17g, \"dt\": %.17g, \"mass\": %.17g, "
+      "\"radius\": %.17g, \"impactor_radius\": %.17g, \"speed\": %.17g, "
+      "\"side\": %.17g, \"depth\": %.17g, \"damping_factor_n\": %.17g, "
+      "\"damping_factor_t\": %.17g",
+      pr.particles.size(), pr.stiffness.kN, pr.dem.dt, m, kRadius, pr.impactor.radius, kSpeed,
+      pr.box.side, pr.box.depth,
+      clippedDampingFactor(NormalLawKind::LinearSpringDashpot, pr.dem.contact.restitutionN),
+      dashpotFactor(pr.dem.contact.restitutionT));
   return buf;
 }
 } // namespace

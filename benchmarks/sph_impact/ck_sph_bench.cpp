@@ -17,7 +17,7 @@
 // CK_BLOCK_STEPS=L: individual power-of-two steps in the late stage, up to 2^L times the smallest
 // (SphParams::blockStepLevels; a step is then a block cycle, and the smallest steps and particle
 // updates are printed at the end). CK_COHESION (Pa, default 0): the target's Drucker–Prager
-// cohesion (docs/validation.md, "Depth and the SPH resolution", point 9).
+// cohesion (docs/validation_history.md, "Depth and the SPH resolution", point 9).
 #include "sph/ImpactSetup.h"
 #include "sph/SphRun.h"
 #include "sph/SphSolver.h"
@@ -241,7 +241,8 @@ int main(int argc, char** argv) {
                   solver.time(), solver.steps(), solver.stableStep(), vmax, pmax, amin,
                   std::abs(P[2] - P0[2]) / std::abs(P0[2]), (solver.totalEnergy() - E0) / E0);
       // Where the impactor (the first prob.impactorParticles) is: what sets the crater's
-      // depth in the graded Ryugu stage (docs/validation.md, "Depth and the SPH resolution").
+      // depth in the graded Ryugu stage (docs/validation_history.md, "Depth and the SPH
+      // resolution").
       double mi = 0.0, zc = 0.0, vc = 0.0;
       for (std::size_t i = 0; i < prob.impactorParticles; ++i)
         mi += s.mass[i], zc += s.mass[i] * s.x[3 * i + 2], vc += s.mass[i] * s.v[3 * i + 2];

@@ -56,7 +56,7 @@ EJECTA_LIMIT_RATIO = 1.0 / math.sqrt(RYUGU_GRAVITY * SCI_CRATER["diameter"])
 # within 0.13 m between coarsening 10 and 8); handed off at 0.63 sqrt(D_pi/g) (196 s, the example's
 # default) the crater's depth was the SPH late stage's, which is not converged: the target under the
 # floor dilates to 0.17-0.6 of its bulk density and rises by 1.3 m at coarsening 10 and 3.7 m at 8
-# (docs/validation.md, "Depth and the SPH resolution", points 7, 8 and 12).
+# (docs/validation_history.md, "Depth and the SPH resolution", points 7, 8 and 12).
 RYUGU_VALIDATION_STAGE = ["--sph-coarsening", "10", "--sph-domain-radius", "29", "--sph-target-radius", "11.6",
                           "--late-stage-sound-speed", "0.46637", "--sph-block-steps", "7",
                           "--handoff-time", "29.5"]

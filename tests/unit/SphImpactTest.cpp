@@ -196,7 +196,7 @@ static SphImpactProblem switchingImpact(double t1) {
 // and scales the deviatoric stress as the run straight through does. Resumed as if already
 // switched (as before 2026-12-05), the copper kept its tens of MPa of deviatoric stress under a
 // shear modulus of 0.6 kPa, which threw the SCI impactor's particles out at up to 73 m/s
-// (docs/validation.md, "Depth and the SPH resolution"); here the states then differ by far
+// (docs/validation_history.md, "Depth and the SPH resolution"); here the states then differ by far
 // more than the tolerances below.
 TEST(SphImpact, ResumedAtTheLateStageSwitchScalesTheStressAsStraightThrough) {
   const double t1 = 2e-5, t2 = 4e-5;

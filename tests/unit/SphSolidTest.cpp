@@ -321,7 +321,7 @@ Collapse collapseColumn(double bulkModulus, double lateStageTime, double lateSou
 } // namespace
 
 // Not a check: the column of the test below with another bulk modulus (CK_COLUMN_K, Pa), as
-// recorded in docs/validation.md.
+// recorded in docs/validation_history.md.
 TEST(SphSolid, DISABLED_GranularColumnCollapseStiffness) {
   const char* env = std::getenv("CK_COLUMN_K");
   collapseColumn(env ? std::atof(env) : 4e6, -1.0, 0.0);
@@ -487,8 +487,8 @@ std::vector<double> slopeVelocities(double betaDeg, const std::vector<double>& t
 // cosβ) per second with μ_b the floor's friction; for the yield law's 3B that is 1.10 m/s², of
 // which at least half must show (the artificial viscosity resists a sheared flow too). Upper
 // bound: a flowing SPH layer of this soil yields at T/N = 0.65–0.665 instead of 3B (its rows
-// carry a normal-stress difference S_xx ≈ −S_zz ≈ 0.045 p, docs/validation.md), so its floor
-// friction is at least 0.65: a gain of at most g (sinβ − 0.65 cosβ) = 1.42 m/s². And the
+// carry a normal-stress difference S_xx ≈ −S_zz ≈ 0.045 p, docs/validation_history.md), so its
+// floor friction is at least 0.65: a gain of at most g (sinβ − 0.65 cosβ) = 1.42 m/s². And the
 // layer's weight presses its lowest row onto the floor: at 2 s (2.4 m/s) at least 28 of its 32
 // particles still lie below z = dx (a flow may trade a few with the row above). With the full
 // artificial viscosity between floor and soil (SphParams::wallViscosity = 1, the rule before
@@ -520,7 +520,7 @@ TEST(SphSolid, InfiniteSlopeStandsBelowTheYieldAngleAndFlowsAbove) {
 // floor's pressure extrapolated; 0.0583 with the dynamic floor, 2026-12-04), asserted within
 // ±50 % (the layer's rows still settle: one second, one sample). The soft layer (K = 0.4 MPa,
 // the test above) glides from 32° on, with a normal-stress difference S_xx ≈ −S_zz ≈ 0.045 p
-// in its flowing state that lowers T/N at yield to 0.65 (docs/validation.md).
+// in its flowing state that lowers T/N at yield to 0.65 (docs/validation_history.md).
 TEST(SphSolid, InfiniteSlopeOfStiffSoilFollowsTheYieldLaw) {
   const double g = 9.81, B3 = 6.0 * 0.5 / (std::sqrt(3.0) * 2.5);
   SlopeCase c;
@@ -627,7 +627,7 @@ TEST(SphSolid, HydrostaticColumnLoadsTheFloorWithItsWeight) {
 }
 
 // Not a check: the same column with the floor's pressure from its own density (before
-// 2026-12-05), for the record in docs/validation.md.
+// 2026-12-05), for the record in docs/validation_history.md.
 TEST(SphSolid, DISABLED_HydrostaticColumnWithDynamicWalls) {
   hydrostaticColumn(SphParams::Walls::Dynamic);
 }
@@ -783,7 +783,7 @@ TEST(SphSolid, GradyKippDamageGrowsInTensionOnly) {
   EXPECT_EQ(flawless.second, 0.0);
 }
 
-// Not a check: the sweep behind the recorded threshold in docs/validation.md. Run with
+// Not a check: the sweep behind the recorded threshold in docs/validation_history.md. Run with
 // CK_SLOPES="32 33 34 36 37" build/bin/CraterKitUnitTests --gtest_also_run_disabled_tests
 //   --gtest_filter=SphSolid.DISABLED_InfiniteSlopeSweep
 // and optionally CK_SLOPE_NZ (particles across the layer, 10), CK_SLOPE_ALPHA (artificial
