@@ -52,29 +52,35 @@ FragmentResult analyseFragments(const std::vector<double>& x, const std::vector<
   if (x.size() != 3 * n || m.size() != n || v.size() != 3 * n)
     throw InputError("FragmentAnalysis: positions, radii, masses and velocities differ in count");
   par.validate(n);
-  double rmax = 0.0;
+  double rmean = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!(r[i] > 0.0) || !std::isfinite(r[i]) || !(m[i] > 0.0))
       throw InputError("FragmentAnalysis: particle " + std::to_string(i) +
                        " has a non-positive radius or mass");
-    rmax = std::max(rmax, r[i]);
+    rmean += r[i];
   }
+  rmean /= static_cast<double>(n);
   UnionFind uf(n);
   if (!par.bonds.empty()) {
     for (const auto& [a, b] : par.bonds)
       uf.unite(a, b);
   } else {
-    const double reach = 2.0 * rmax * (1.0 + par.tolerance);
+    // Each contact is found once, by the larger of its two particles (by radius, then by
+    // index): a particle searches twice its own radius, on cells of the mean diameter, so one
+    // large body scans its own neighbourhood and no other particle's search grows with it.
+    // The fragments depend only on which pairs are linked, not on the order of the unions
+    // (the numbering below goes by mass and smallest member).
+    const double grow = 1.0 + par.tolerance;
     CellList cells;
-    cells.build(x.data(), n, reach);
+    cells.build(x.data(), n, 2.0 * rmean * grow);
     for (std::size_t i = 0; i < n; ++i)
-      cells.forEachCandidate(&x[3 * i], reach, [&](std::size_t j) {
-        if (j <= i)
-          return;
+      cells.forEachCandidate(&x[3 * i], 2.0 * r[i] * grow * (1.0 + 1e-12), [&](std::size_t j) {
+        if (r[j] > r[i] || (r[j] == r[i] && j <= i))
+          return; // the pair is the larger one's (or i itself)
         const double d2 = (x[3 * i] - x[3 * j]) * (x[3 * i] - x[3 * j]) +
                           (x[3 * i + 1] - x[3 * j + 1]) * (x[3 * i + 1] - x[3 * j + 1]) +
                           (x[3 * i + 2] - x[3 * j + 2]) * (x[3 * i + 2] - x[3 * j + 2]);
-        const double cut = (r[i] + r[j]) * (1.0 + par.tolerance);
+        const double cut = (r[i] + r[j]) * grow;
         if (d2 <= cut * cut)
           uf.unite(i, j);
       });

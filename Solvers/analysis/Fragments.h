@@ -2,12 +2,14 @@
 //
 // Fragments are the connected components of the particles linked by a contact: centres
 // closer than (r_i + r_j)(1 + tolerance), or by an explicit bond list. Union-find over a cell
-// list (O(N)). Per fragment: count, mass, centre of mass and velocity (momentum over mass);
-// summary: the fragmentation F = N_fragments / N_particles, the largest fragment's mass
-// fraction, the cumulative mass distribution, and the debris cloud along an axis: the
-// particles past `cloudStart` along it, their axial length L_a, radial extent L_r (twice the
-// largest distance from the axis), R = L_a / L_r and the axial front speed (largest axial
-// velocity).
+// list of cells of the mean diameter (O(N)), each contact found by the search of the larger of
+// its two particles: one large body among small grains (an impactor) searches its own
+// neighbourhood, and no other particle's search grows with it. Per fragment: count, mass,
+// centre of mass and velocity (momentum over mass); summary: the fragmentation
+// F = N_fragments / N_particles, the largest fragment's mass fraction, the cumulative mass
+// distribution, and the debris cloud along an axis: the particles past `cloudStart` along it,
+// their axial length L_a, radial extent L_r (twice the largest distance from the axis),
+// R = L_a / L_r and the axial front speed (largest axial velocity).
 #pragma once
 
 #include <array>

@@ -30,38 +30,58 @@ void boundsOf(const double* points, std::size_t n, std::array<double, 3>& lo,
 
 } // namespace
 
-void CellList::build(const double* points, std::size_t n, double cellSize) {
+SizeClasses sizeClasses(const double* size, std::size_t n) {
+  SizeClasses c;
+  if (n == 0)
+    return c;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    sum += size[i];
+  c.cut = SizeClasses::kLargeBodyFactor * (sum / static_cast<double>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    c.largest = std::max(c.largest, size[i]);
+    if (c.isLarge(size[i]))
+      ++c.large;
+    else
+      c.ordinaryMax = std::max(c.ordinaryMax, size[i]);
+  }
+  return c;
+}
+
+CellList::DenseGeometry CellList::denseGeometry(const double* points, std::size_t n,
+                                                double cellSize) {
   if (!(cellSize > 0.0) || !std::isfinite(cellSize))
     throw InputError("cell list: cell size must be positive and finite");
-  count_ = n;
-  sparse_ = false;
   std::array<double, 3> lo{}, hi{};
   boundsOf(points, n, lo, hi);
   // Grow the cells until the grid holds at most ~4 cells per point (and at least 1 cell).
   const double maxCells = std::max<double>(64.0, 4.0 * static_cast<double>(n));
-  cellSize_ = cellSize;
+  DenseGeometry g;
+  g.cellSize = cellSize;
   for (;;) {
     double cells = 1.0;
     for (int k = 0; k < 3; ++k)
-      cells *= std::floor((hi[k] - lo[k]) / cellSize_) + 1.0;
+      cells *= std::floor((hi[k] - lo[k]) / g.cellSize) + 1.0;
     if (cells <= maxCells)
       break;
-    cellSize_ *= 1.25;
+    g.cellSize *= 1.25;
   }
-  std::size_t total = 1;
   for (int k = 0; k < 3; ++k) {
-    origin_[k] = lo[k];
-    dims_[k] = static_cast<std::size_t>(std::floor((hi[k] - lo[k]) / cellSize_)) + 1;
-    total *= dims_[k];
+    g.origin[k] = lo[k];
+    g.dims[k] = static_cast<std::size_t>(std::floor((hi[k] - lo[k]) / g.cellSize)) + 1;
   }
+  return g;
+}
+
+void CellList::build(const double* points, std::size_t n, double cellSize) {
+  grid_ = denseGeometry(points, n, cellSize);
+  count_ = n;
+  sparse_ = false;
+  const std::size_t total = grid_.dims[0] * grid_.dims[1] * grid_.dims[2];
   std::vector<std::size_t> cellOf(n);
   cellStart_.assign(total + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    std::size_t c[3];
-    for (int k = 0; k < 3; ++k)
-      c[k] = std::min(dims_[k] - 1,
-                      static_cast<std::size_t>((points[3 * i + k] - origin_[k]) / cellSize_));
-    cellOf[i] = (c[2] * dims_[1] + c[1]) * dims_[0] + c[0];
+    cellOf[i] = grid_.cellOf(&points[3 * i]);
     ++cellStart_[cellOf[i] + 1];
   }
   for (std::size_t c = 0; c < total; ++c)
@@ -84,13 +104,14 @@ void CellList::buildSparse(const double* points, std::size_t n, double cellSize)
   // One empty cell of padding on every side: the 27 cells around an occupied cell all have
   // linear indices, at fixed offsets from its own.
   constexpr double kAxisCells = double(1 << 21); // three axes' indices in 63 bits
-  cellSize_ = cellSize * (1.0 + 1e-8);
-  while (std::floor((std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]})) / cellSize_) + 3.0 >
+  double& size = grid_.cellSize;
+  size = cellSize * (1.0 + 1e-8);
+  while (std::floor((std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]})) / size) + 3.0 >
          kAxisCells)
-    cellSize_ *= 1.25;
+    size *= 1.25;
   for (int k = 0; k < 3; ++k) {
-    origin_[k] = lo[k] - cellSize_;
-    dims_[k] = static_cast<std::size_t>(std::floor((hi[k] - lo[k]) / cellSize_)) + 3;
+    grid_.origin[k] = lo[k] - size;
+    grid_.dims[k] = static_cast<std::size_t>(std::floor((hi[k] - lo[k]) / size)) + 3;
   }
   sortByCell(points, n);
   findRows();
@@ -101,9 +122,9 @@ void CellList::buildSparse(const double* points, std::size_t n, double cellSize)
 // build()'s counting sort. Then the occupied cells, their first points and each point's cell.
 void CellList::sortByCell(const double* points, std::size_t n) {
   keyOf_.resize(n), keyTmp_.resize(n), idOf_.resize(n), idTmp_.resize(n);
-  const std::array<std::size_t, 3> dims = dims_;
-  const std::array<double, 3> origin = origin_;
-  const double size = cellSize_;
+  const std::array<std::size_t, 3> dims = grid_.dims;
+  const std::array<double, 3> origin = grid_.origin;
+  const double size = grid_.cellSize;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < static_cast<long>(n); ++i) {
     std::uint64_t c[3];
@@ -187,8 +208,8 @@ void CellList::findRows() {
   std::uint64_t offset[9];
   for (int dz = -1, r = 0; dz <= 1; ++dz)
     for (int dy = -1; dy <= 1; ++dy, ++r) // unsigned wrap-around: the sum is the neighbour's
-      offset[r] = static_cast<std::uint64_t>((dz * static_cast<long long>(dims_[1]) + dy) *
-                                             static_cast<long long>(dims_[0]));
+      offset[r] = static_cast<std::uint64_t>((dz * static_cast<long long>(grid_.dims[1]) + dy) *
+                                             static_cast<long long>(grid_.dims[0]));
   constexpr std::size_t kChunk = 4096;
   const long chunks = static_cast<long>((cells + kChunk - 1) / kChunk);
   const std::uint64_t* key = cellKey_.data();

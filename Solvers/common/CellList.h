@@ -16,6 +16,11 @@
 // nine rows of the 3 x 3 x 3 cells around it are found once per build (forEachNeighbourRange), by
 // one merge over the sorted indices per row offset, for callers whose queries are the points
 // themselves.
+//
+// One large body among small ones (an impactor among grains) must not set the cell size: cells
+// that fit it make every query of a small particle scan cells of its size (at a size ratio of
+// 6.7, some 300 times the candidates). The searches size their cells by the ordinary particles
+// (sizeClasses below) and search the few large ones with their own larger reach.
 #pragma once
 
 #include <algorithm>
@@ -27,8 +32,54 @@
 
 namespace craterkit {
 
+// Sizes (radii, support radii) split into ordinary and large: large is above kLargeBodyFactor
+// times the mean. A set of equal sizes, or one whose sizes stay within that factor of their
+// mean, has no large member; cells sized by `ordinaryMax` then are cells sized by the largest.
+struct SizeClasses {
+  static constexpr double kLargeBodyFactor = 2.0;
+  double cut = 0.0;         // sizes above this are large
+  double ordinaryMax = 0.0; // the largest size not above the cut
+  double largest = 0.0;
+  std::size_t large = 0; // how many are above the cut
+  bool isLarge(double size) const { return size > cut; }
+};
+SizeClasses sizeClasses(const double* size, std::size_t n);
+
 class CellList {
 public:
+  // Where build() puts the points of a set (its origin, the cells grown as it grows them, their
+  // number per axis) without building: for a caller that reproduces the order in which a search
+  // on such cells would visit them (by cell, then by index).
+  struct DenseGeometry {
+    std::array<double, 3> origin{};
+    std::array<std::size_t, 3> dims{};
+    double cellSize = 1.0;
+    // The linear index (x fastest) of the cell build() puts point p in.
+    std::size_t cellOf(const double* p) const {
+      std::size_t c[3];
+      for (int k = 0; k < 3; ++k)
+        c[k] = std::min(dims[k] - 1, static_cast<std::size_t>((p[k] - origin[k]) / cellSize));
+      return (c[2] * dims[1] + c[1]) * dims[0] + c[0];
+    }
+    // The cells a query (x, reach) visits, per axis lo[k] .. hi[k]; false if none.
+    bool visited(const double x[3], double reach, std::array<long, 3>& lo,
+                 std::array<long, 3>& hi) const {
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::max(0L, coord(x[k] - reach, k));
+        hi[k] = std::min(static_cast<long>(dims[k]) - 1, coord(x[k] + reach, k));
+        if (lo[k] > hi[k])
+          return false;
+      }
+      return true;
+    }
+    long coord(double v, int k) const {
+      const double c = std::floor((v - origin[k]) / cellSize);
+      // Clamp in double first so that far-away query points cannot overflow a long.
+      return static_cast<long>(std::clamp(c, -1.0, static_cast<double>(dims[k])));
+    }
+  };
+  static DenseGeometry denseGeometry(const double* points, std::size_t n, double cellSize);
+
   // points: 3*n contiguous coordinates; cellSize > 0.
   void build(const double* points, std::size_t n, double cellSize);
   // The sparse layout (see above): cells of cellSize (times 1 + 1e-8, see forEachNeighbourRange)
@@ -53,15 +104,12 @@ public:
     if (count_ == 0)
       return;
     std::array<long, 3> lo{}, hi{};
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::max(0L, cellCoord(x[k] - reach, k));
-      hi[k] = std::min(static_cast<long>(dims_[k]) - 1, cellCoord(x[k] + reach, k));
-      if (lo[k] > hi[k])
-        return;
-    }
+    if (!grid_.visited(x, reach, lo, hi))
+      return;
+    const std::array<std::size_t, 3>& dims = grid_.dims;
     for (long cz = lo[2]; cz <= hi[2]; ++cz)
       for (long cy = lo[1]; cy <= hi[1]; ++cy) {
-        const std::size_t row = (static_cast<std::size_t>(cz) * dims_[1] + cy) * dims_[0];
+        const std::size_t row = (static_cast<std::size_t>(cz) * dims[1] + cy) * dims[0];
         if (!sparse_) {
           visit(cellStart_[row + lo[0]], cellStart_[row + hi[0] + 1]);
           continue;
@@ -102,7 +150,7 @@ public:
 
   // The points' indices in cell order.
   const std::vector<std::size_t>& sorted() const { return sorted_; }
-  double cellSize() const { return cellSize_; }
+  double cellSize() const { return grid_.cellSize; }
 
 private:
   static constexpr std::size_t kRowEnds = 18; // begin and end of the nine rows around a cell
@@ -111,15 +159,7 @@ private:
   void radixPass(std::size_t n, int shift);
   void findRows();
 
-  long cellCoord(double v, int k) const {
-    const double c = std::floor((v - origin_[k]) / cellSize_);
-    // Clamp in double first so that far-away query points cannot overflow a long.
-    return static_cast<long>(std::clamp(c, -1.0, static_cast<double>(dims_[k])));
-  }
-
-  std::array<double, 3> origin_{};
-  std::array<std::size_t, 3> dims_{};
-  double cellSize_ = 1.0;
+  DenseGeometry grid_; // the cells' origin, number and size (of either layout)
   std::size_t count_ = 0;
   std::vector<std::size_t> cellStart_; // size cells+1
   std::vector<std::size_t> sorted_;    // point indices ordered by cell

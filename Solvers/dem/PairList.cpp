@@ -11,25 +11,32 @@
 namespace craterkit {
 
 void PairList::build(const double* x, const double* r, std::size_t n, double rmax, double skin) {
-  // Cells fit the ordinary particles; a few much larger ones (an impactor) search a wider
-  // range themselves and every other particle checks them directly, so one big sphere does
-  // not make every cell (and every search) eight times larger.
-  const double rmin = n ? *std::min_element(r, r + n) : 0.0;
+  // Cells fit the ordinary particles (common/CellList.h, sizeClasses); each particle finds its
+  // ordinary neighbours on them (reach r_i + the largest ordinary radius + skin) and tests the
+  // few large ones (an impactor) itself, or, beyond kDirectLarge of them, finds them on cells
+  // of their own (reach r_i + rmax + skin): one big sphere makes no cell, and no other
+  // particle's search, larger. Every pair i < j within reach is found by i, as before.
+  constexpr std::size_t kDirectLarge = 64;
+  const SizeClasses sizes = sizeClasses(r, n);
+  const double rsmall = sizes.large ? sizes.ordinaryMax : rmax;
   std::vector<std::uint32_t> large;
-  double rsmall = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (r[i] > 1.5 * rmin)
-      large.push_back(static_cast<std::uint32_t>(i));
-    else
-      rsmall = std::max(rsmall, r[i]);
+  std::vector<char> isLarge(sizes.large ? n : 0, 0);
+  if (sizes.large) {
+    large.reserve(sizes.large);
+    for (std::size_t i = 0; i < n; ++i)
+      if (sizes.isLarge(r[i])) {
+        large.push_back(static_cast<std::uint32_t>(i));
+        isLarge[i] = 1;
+      }
   }
-  if (large.size() > 64) {
-    large.clear();
-    rsmall = rmax;
+  const bool largeOnCells = large.size() > kDirectLarge;
+  if (largeOnCells) {
+    std::vector<double> at(3 * large.size());
+    for (std::size_t k = 0; k < large.size(); ++k)
+      for (int a = 0; a < 3; ++a)
+        at[3 * k + a] = x[3 * large[k] + a];
+    largeCells_.build(at.data(), large.size(), 2.0 * rmax + skin);
   }
-  std::vector<char> isLarge(large.empty() ? 0 : n, 0);
-  for (std::uint32_t b : large)
-    isLarge[b] = 1;
   CellList& cells = cells_; // kept: its arrays keep their memory from build to build
   cells.build(x, n, 2.0 * rsmall + skin);
   // Calls f(j) for every j > i within reach of i.
@@ -52,9 +59,16 @@ void PairList::build(const double* x, const double* r, std::size_t n, double rma
       if (j > i && !isLarge[j])
         test(j);
     });
-    for (std::uint32_t b : large)
-      if (b > i)
-        test(b);
+    if (!largeOnCells) {
+      for (std::uint32_t b : large)
+        if (b > i)
+          test(b);
+      return;
+    }
+    largeCells_.forEachCandidate(&x[3 * i], r[i] + rmax + skin, [&](std::size_t k) {
+      if (large[k] > i)
+        test(large[k]);
+    });
   };
   // One search per particle (no counting pass): each thread appends the pairs of the chunks
   // it takes to its own buffer and counts each particle's second members; then the counts

@@ -1,11 +1,12 @@
 // The DEM's half Verlet list (pkdgrav SSDEM; Schwartz, Richardson & Michel 2012, §2.1:
 // contacts are found among neighbours within a skin).
 //
-// Pairs i < j within r_i + r_j + skin, found with a cell list, sorted by (i, j). A pair slot
-// holds only its particles, a contact flag and, for a pair in contact, its row in the contact
-// table (dem/ContactTable.h), which keeps the histories and results of the few pairs in
-// contact: the pass that tests every listed pair reads 9 bytes a pair. The flags and rows are
-// carried across rebuilds by merging each particle's old and new pairs (both sorted), so a
+// Pairs i < j within r_i + r_j + skin, found with a cell list whose cells fit the ordinary
+// particles (the few large ones, an impactor, searched apart), sorted by (i, j). A pair
+// slot holds only its particles, a contact flag and, for a pair in contact, its row in the
+// contact table (dem/ContactTable.h), which keeps the histories and results of the few pairs
+// in contact: the pass that tests every listed pair reads 9 bytes a pair. The flags and rows
+// are carried across rebuilds by merging each particle's old and new pairs (both sorted), so a
 // rebuild never resets a spring. Each particle finds its pairs through firstStart (pairs where
 // it is i, in order of j); secondStart counts the pairs where it is j and gives it slots for
 // its rows as second member (dem/ParticleContacts.h), so that the force gather sums every
@@ -76,7 +77,7 @@ private:
   std::vector<char> spareActive_;
   std::vector<std::uint32_t> spareRow_;
   std::vector<std::size_t> spareStart_;
-  CellList cells_;
+  CellList cells_, largeCells_; // every particle on cells of the ordinary ones; the many large
   // Per thread: the second members it found, and how often each particle was one.
   std::vector<std::vector<std::uint32_t>> found_, secondCounts_;
   // Per chunk of kChunk particles: the thread that searched it and where in its buffer.

@@ -1,5 +1,6 @@
 #include "handoff/Ejecta.h"
 
+#include "common/CellList.h"
 #include "common/Container.h"
 #include "common/SparseGrid.h"
 #include "handoff/Split.h"
@@ -221,25 +222,34 @@ void place(const std::vector<Piece>& pieces, const std::vector<double>& er, doub
   std::int64_t nextId = 0;
   for (std::size_t i = 0; i < p.size(); ++i)
     nextId = std::max(nextId, p.id[i] + 1);
-  SparseGrid grid(2.0 * rmax);
+  // Only the particles a sphere (x, r) overlaps decide where it goes (the worst overlap, the
+  // room left and the evictions are a maximum, a minimum and a set), so the search needs to
+  // find those, in any order. The cells fit the ordinary radii (common/CellList.h,
+  // sizeClasses, over the bed's and the pieces' radii); the few larger particles are listed
+  // on cells of their own (common/SparseGrid.h, SphereGrid).
+  std::vector<double> radii(p.radius);
+  radii.insert(radii.end(), er.begin(), er.end());
+  const SizeClasses sizes = sizeClasses(radii.data(), radii.size());
+  SphereGrid grid(sizes.large ? sizes.ordinaryMax : rmax, rmax);
   grid.reserve(p.size() + pieces.size());
   for (std::size_t i = 0; i < p.size(); ++i)
-    grid.insert(&p.position[3 * i], i);
-  // Calls f(j, distance) for every particle j in the 27 cells around x; f returns true to take
-  // j off the grid.
-  auto forNearby = [&](const double* x, auto&& f) {
-    grid.forEachNear(x, [&](std::size_t j) { return f(j, distance(x, &p.position[3 * j])); });
+    grid.insert(&p.position[3 * i], p.radius[i], i);
+  // Calls f(j, distance) for every particle j that a sphere (x, r) overlaps, and for others
+  // near it; f returns true to take j off the grid.
+  auto forNearby = [&](const double* x, double r, auto&& f) {
+    grid.forEachOverlapCandidate(
+        x, r, [&](std::size_t j) { return f(j, distance(x, &p.position[3 * j])); });
   };
   auto worstOverlap = [&](const double* x, double r) {
     double worst = 0.0;
-    forNearby(x, [&](std::size_t j, double d) {
+    forNearby(x, r, [&](std::size_t j, double d) {
       worst = std::max(worst, (r + p.radius[j] - d) / std::min(r, p.radius[j]));
       return false;
     });
     return worst;
   };
   auto room = [&](const double* x, double r) { // the largest radius up to r that touches none
-    forNearby(x, [&](std::size_t j, double d) {
+    forNearby(x, r, [&](std::size_t j, double d) {
       r = std::min(r, d - p.radius[j]);
       return false;
     });
@@ -277,7 +287,7 @@ void place(const std::vector<Piece>& pieces, const std::vector<double>& er, doub
       } else {
         // Fast SPH material sits where a bed particle is: the ejecta particle takes its place
         // (the bed particle leaves the mapped set before the momentum correction).
-        forNearby(x, [&](std::size_t j, double d) {
+        forNearby(x, radius, [&](std::size_t j, double d) {
           if (j < nBed && (radius + p.radius[j] - d) / std::min(radius, p.radius[j]) > 0.01) {
             gone[j] = 1;
             ++out.bedEvicted;
@@ -306,7 +316,7 @@ void place(const std::vector<Piece>& pieces, const std::vector<double>& er, doub
     p.material.push_back(material);
     p.id.push_back(nextId++);
     out.origin.push_back(1);
-    grid.insert(x, p.size() - 1);
+    grid.insert(x, radius, p.size() - 1);
   }
   if (unresolved > 0)
     out.warnings.push_back(std::to_string(unresolved) + " ejecta particles still overlap a "

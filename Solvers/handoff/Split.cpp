@@ -74,14 +74,32 @@ HandoffTotals sphTotals(const SphSnapshot& s, const std::vector<std::size_t>& su
 CompactCloud::CompactCloud(const SphSnapshot& sph, const std::vector<std::size_t>& compact,
                            double alphaRadius)
     : x(3 * compact.size()), h(compact.size()) {
-  for (std::size_t k = 0; k < compact.size(); ++k) {
+  const std::size_t n = compact.size();
+  for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = compact[k];
     h[k] = i < sph.h.size() && sph.h[i] > 0.0 ? sph.h[i] : 2.0 * alphaRadius;
     hmax = std::max(hmax, h[k]);
     for (int a = 0; a < 3; ++a)
       x[3 * k + a] = sph.x[3 * i + a];
   }
-  cells.build(x.data(), compact.size(), hmax);
+  const SizeClasses sizes = sizeClasses(h.data(), n);
+  hOrdinary = sizes.large ? sizes.ordinaryMax : hmax;
+  cells.build(x.data(), n, hOrdinary);
+  if (sizes.large == 0)
+    return;
+  isWide.assign(n, 0);
+  std::vector<double> at;
+  for (std::size_t k = 0; k < n; ++k)
+    if (sizes.isLarge(h[k])) {
+      wide.push_back(static_cast<std::uint32_t>(k));
+      isWide[k] = 1;
+      at.insert(at.end(), &x[3 * k], &x[3 * k] + 3);
+    }
+  wideCells.build(at.data(), wide.size(), hmax);
+  orderGrid = CellList::denseGeometry(x.data(), n, hmax);
+  orderKey.resize(n);
+  for (std::size_t k = 0; k < n; ++k)
+    orderKey[k] = orderGrid.cellOf(&x[3 * k]);
 }
 
 } // namespace craterkit
