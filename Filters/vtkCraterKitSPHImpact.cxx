@@ -3,6 +3,7 @@
 #include "CraterKitEnumTables.h"
 #include "vtkCraterKitSolverBridge.h"
 
+#include "common/Error.h"
 #include "sph/ImpactSetup.h"
 #include "sph/SphRun.h"
 
@@ -11,11 +12,36 @@
 #include <vtkObjectFactory.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
+#include <dlfcn.h>
+
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <vector>
 
 vtkStandardNewMacro(vtkCraterKitSPHImpact);
+
+namespace {
+// The material folder that comes with the plugin, used when neither the MaterialDirectory
+// property nor CRATERKIT_MATERIALS names one: share/craterkit/materials of an installed plugin,
+// found relative to this library (CRATERKIT_MATERIALS_RELATIVE, Filters/CMakeLists.txt), else
+// the link "materials" beside the plugin of a build tree (to the source tree's data/materials).
+// Empty when there is neither.
+std::string pluginMaterialDirectory() {
+  namespace fs = std::filesystem;
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&pluginMaterialDirectory), &info) == 0 || !info.dli_fname)
+    return "";
+  const fs::path here = fs::path(info.dli_fname).parent_path();
+  for (const fs::path& candidate : {here / CRATERKIT_MATERIALS_RELATIVE, here / "materials"}) {
+    std::error_code ec;
+    const fs::path found = fs::canonical(candidate, ec);
+    if (!ec && fs::is_directory(found, ec))
+      return found.string();
+  }
+  return "";
+}
+} // namespace
 
 vtkCraterKitSPHImpact::vtkCraterKitSPHImpact() { this->SetNumberOfInputPorts(0); }
 vtkCraterKitSPHImpact::~vtkCraterKitSPHImpact() = default;
@@ -32,7 +58,11 @@ craterkit::SphImpactSetup vtkCraterKitSPHImpact::Setup() const {
   using craterkit::SphImpactSetup;
   SphImpactSetup setup;
   setup.materialDirectory =
-      craterkit::materialDirectory(this->MaterialDirectory, CRATERKIT_MATERIALS_DIR);
+      craterkit::materialDirectory(this->MaterialDirectory, pluginMaterialDirectory());
+  if (setup.materialDirectory.empty())
+    throw craterkit::InputError(
+        "no material folder: set MaterialDirectory or the environment variable "
+        "CRATERKIT_MATERIALS (the plugin's own share/craterkit/materials was not found)");
   setup.impactorMaterial = this->ImpactorMaterial;
   setup.impactorMass = this->ImpactorMass;
   setup.impactorRadius = this->ImpactorRadius;

@@ -119,8 +119,9 @@ private:
   craterkit::SphImpactSetup Setup() const; // the properties as the solver's set-up
   void BuildRun();
 
-  std::string
-      MaterialDirectory; // empty: CRATERKIT_MATERIALS, else the source tree's data/materials
+  // Empty: CRATERKIT_MATERIALS, else the plugin's share/craterkit/materials (installed) or the
+  // source tree's data/materials (build tree).
+  std::string MaterialDirectory;
   std::string ImpactorMaterial = "copper";
   double ImpactorMass = 2.0;
   double ImpactorRadius = 0.0;

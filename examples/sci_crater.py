@@ -23,7 +23,7 @@ from types import SimpleNamespace
 
 from craterkit import fetch, fetch_stage, field_value, load_plugin, sci
 from craterkit.figures import handoff_figure, profile_plot
-from craterkit.report import validation_summary, write_report
+from craterkit.report import to_resolution, validation_summary, write_report
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -177,12 +177,15 @@ def main(argv):
     run.images = figures(simple, args, sc, run, sph, hand, dem, profile, frames[-1])
     report = sci.report_entries(args, sc, run)
     write_report(out, "the SCI impact, SPH to DEM", run.images[1], report, about=sci.about(args, sc, run),
-                 validation=validation_summary(os.path.join(ROOT, "results", "validation.md")))
+                 validation=validation_summary(os.path.join(ROOT, "results", "validation.md")),
+                 resolution=sci.report_resolution(run))
     with open(os.path.join(out, "report.md"), "a") as f:
         f.write(f"\n![hand-off]({run.images[0]})\n\n![profile]({run.images[2]})\n")
     m = run.measures
-    sci.say(f"crater diameter {m['diameter']:.3g} m ({m['diameter'] / sc.d_pi:.2f} x pi-scaling {sc.d_pi:.3g} m), "
-            f"rim diameter {m['rim_diameter']:.3g} m, depth {m['depth']:.3g} m" if m["found"] else
+    length = lambda value: to_resolution(value, run.grain_radius)  # noqa: E731  (to a grain radius)
+    sci.say(f"crater diameter {length(m['diameter'])} m ({m['diameter'] / sc.d_pi:.2f} x pi-scaling "
+            f"{sc.d_pi:.3g} m), rim diameter {length(m['rim_diameter'])} m, depth {length(m['depth'])} m "
+            f"({length(m['depth_below_rim'])} m below the rim crest)" if m["found"] else
             "no crater below the original surface at the end of the DEM stage")
     sci.say(f"wrote {out}/report.md, report.json, {', '.join(run.images)}")
     return 0

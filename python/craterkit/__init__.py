@@ -4,36 +4,139 @@
     simple = load_plugin()          # paraview.simple with the CraterKit proxies
     bed = simple.GranularBed(Packing='HCP')
 
-Run scripts through scripts/pvbatch, which finds the plugin and sets up headless rendering.
+Run scripts through scripts/pvbatch (installed: craterkit-pvbatch), which finds the plugin and
+sets up headless rendering. `craterkit.__version__` is CraterKit's version.
 """
 
 import glob
+import json
 import os
+import re
 
-__all__ = ["load_plugin", "plugin_path", "fetch", "fetch_stage", "field_value", "impactor_depth", "print_progress"]
+__all__ = ["__version__", "load_plugin", "plugin_path", "fetch", "fetch_stage", "field_value",
+           "impactor_depth", "print_progress"]
+
+try:  # written into an installed package only (cmake --install, the Debian package)
+    from . import _version as _installed
+except ImportError:
+    _installed = None
+
+_HERE = os.path.dirname(os.path.abspath(__file__))
+# The source tree this package is in (python/craterkit/ -> the root); None when installed.
+SOURCE_ROOT = None if _installed else os.path.dirname(os.path.dirname(_HERE))
+
+
+def _source_version():
+    """The VERSION of project() in the source tree's top-level CMakeLists.txt, the one place
+    the version is written; "unknown" if that file cannot be read."""
+    try:
+        with open(os.path.join(SOURCE_ROOT, "CMakeLists.txt")) as f:
+            match = re.search(r"^\s*project\(\s*CraterKit\s+VERSION\s+([0-9][0-9.]*)", f.read(), re.M)
+    except OSError:
+        match = None
+    return match.group(1) if match else "unknown"
+
+
+__version__ = _installed.__version__ if _installed else _source_version()
+
+
+def resource_path(name):
+    """Where this package finds NAME: "materials" (the folder of *.cfg material files),
+    "run-lammps" (the script that runs a LAMMPS deck) or "plugin" (CraterKit.so; None in the
+    source tree, where scripts/pvbatch names the build's). Installed: relative to the package
+    (its _version.py); in the source tree: data/materials and scripts/run-lammps."""
+    if _installed:
+        relative = {"materials": _installed.MATERIALS, "run-lammps": _installed.RUN_LAMMPS,
+                    "plugin": _installed.PLUGIN}[name]
+        return os.path.normpath(os.path.join(_HERE, relative))
+    return {"materials": os.path.join(SOURCE_ROOT, "data", "materials"),
+            "run-lammps": os.path.join(SOURCE_ROOT, "scripts", "run-lammps"),
+            "plugin": None}[name]
 
 
 def plugin_path():
-    """Path of CraterKit.so: $CRATERKIT_PLUGIN, else the first match on $PV_PLUGIN_PATH."""
+    """Path of CraterKit.so: $CRATERKIT_PLUGIN, else the first match on $PV_PLUGIN_PATH, else
+    (an installed package) the plugin installed with this package."""
     path = os.environ.get("CRATERKIT_PLUGIN")
     if path and os.path.isfile(path):
         return path
     for folder in os.environ.get("PV_PLUGIN_PATH", "").split(os.pathsep):
-        hits = glob.glob(os.path.join(folder, "**", "CraterKit.so"), recursive=True)
+        hits = glob.glob(os.path.join(folder, "**", "CraterKit.so"), recursive=True) if folder else []
         if hits:
             return hits[0]
+    path = resource_path("plugin")
+    if path and os.path.isfile(path):
+        return path
     raise RuntimeError(
-        "CraterKit plugin not found: run the script through scripts/pvbatch, "
-        "or set CRATERKIT_PLUGIN to the path of CraterKit.so")
+        "CraterKit plugin not found: run the script through scripts/pvbatch (installed: "
+        "craterkit-pvbatch), or set CRATERKIT_PLUGIN to the path of CraterKit.so")
+
+
+def _paraview_version():
+    """The running ParaView's "major.minor"."""
+    from paraview import servermanager
+    manager = servermanager.vtkSMProxyManager
+    return f"{manager.GetVersionMajor()}.{manager.GetVersionMinor()}"
+
+
+def _check_build(path):
+    """Before loading the plugin at PATH: stops, naming both versions, when the ParaView
+    running is not the one the plugin was built for, or when the plugin is another CraterKit
+    version than this package (craterkit-build.json beside the plugin; none: no check)."""
+    info_path = os.path.join(os.path.dirname(path), "craterkit-build.json")
+    try:
+        with open(info_path) as f:
+            info = json.load(f)
+    except (OSError, ValueError):
+        return
+    built, running = info.get("paraview_version"), _paraview_version()
+    if built and built != running:
+        raise SystemExit(
+            f"error: the CraterKit plugin {path} was built for ParaView {built}, but this is "
+            f"ParaView {running}: run it with ParaView {built}, or build CraterKit against "
+            f"ParaView {running}")
+    plugin_version = info.get("craterkit_version")
+    if plugin_version and plugin_version != __version__:
+        raise SystemExit(_version_mismatch(path, plugin_version))
+
+
+def _version_mismatch(path, plugin_version):
+    return (f"error: the CraterKit plugin {path} is version {plugin_version}, but the Python "
+            f"package craterkit ({_HERE}) is version {__version__}: use the plugin and the "
+            f"package of one build or one installation")
+
+
+def _loaded_plugin():
+    """(version, file) of the loaded CraterKit plugin as ParaView reports them, or None."""
+    from paraview import servermanager
+    info = servermanager.vtkSMProxyManager.GetProxyManager().GetPluginManager().GetLocalInformation()
+    for i in range(info.GetNumberOfPlugins()):
+        if info.GetPluginName(i) == "CraterKit" and info.GetPluginLoaded(i):
+            return info.GetPluginVersion(i), info.GetPluginFileName(i)
+    return None
+
+
+def plugin_version():
+    """The version ParaView reports for the loaded CraterKit plugin (Tools > Manage Plugins
+    shows the same), or None when it is not loaded."""
+    loaded = _loaded_plugin()
+    return loaded[0] if loaded else None
 
 
 def load_plugin():
-    """Loads the plugin once and returns paraview.simple with its proxies defined."""
+    """Loads the plugin once and returns paraview.simple with its proxies defined. Stops with a
+    message naming both versions when the plugin was built for another ParaView or is another
+    CraterKit version than this package."""
     from paraview import simple
     if not hasattr(simple, "GranularBed"):
-        simple.LoadPlugin(plugin_path(), remote=False, ns=vars(simple))
+        path = plugin_path()
+        _check_build(path)
+        simple.LoadPlugin(path, remote=False, ns=vars(simple))
     if not hasattr(simple, "GranularBed"):
         raise RuntimeError("CraterKit plugin loaded but defines no GranularBed source")
+    loaded = _loaded_plugin()
+    if loaded and loaded[0] != __version__:
+        raise SystemExit(_version_mismatch(loaded[1], loaded[0]))
     return simple
 
 
@@ -117,10 +220,11 @@ def impactor_depth(data):
 
 
 def material_value(name, key, default=None):
-    """A number from a material file under data/materials (rho0, distention, ...); a missing
-    file, or a missing key without a default, ends the script with a message naming it."""
-    folder = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
-                          "data", "materials")
+    """A number from a material file (rho0, distention, ...) of the folder the SPH filter reads
+    by default: $CRATERKIT_MATERIALS, else the installed materials or the source tree's
+    data/materials. A missing file, or a missing key without a default, ends the script with a
+    message naming it."""
+    folder = os.environ.get("CRATERKIT_MATERIALS") or resource_path("materials")
     path = os.path.join(folder, name + ".cfg")
     if not os.path.isfile(path):
         raise SystemExit(f"error: no material file {path}")

@@ -3,6 +3,7 @@
 
 import json
 import os
+import subprocess
 
 
 def rounded(value, digits=3):
@@ -12,6 +13,17 @@ def rounded(value, digits=3):
         return value
     import numpy as np
     return np.format_float_positional(value, precision=digits, unique=False, fractional=False, trim="-")
+
+
+def to_resolution(value, resolution):
+    """VALUE to the decimal place of RESOLUTION (a length measured on grains of radius 0.039 m is
+    given to 0.01 m: 0.98931 -> '0.99'), the digits a measurement with that resolution can claim;
+    other types and a non-positive resolution: as rounded() gives them."""
+    import math
+    if isinstance(value, bool) or not isinstance(value, float) or not resolution > 0.0:
+        return rounded(value)
+    decimals = max(0, -math.floor(math.log10(resolution)))
+    return f"{value:.{decimals}f}"
 
 
 def validation_summary(path):
@@ -28,18 +40,59 @@ def validation_summary(path):
     return f"Latest validation results ({when}; from {path}):\n\n" + "".join(rows)
 
 
-def write_report(output_dir, title, image, report, about="", validation=""):
+def git_commit(root=None):
+    """The commit of the CraterKit source tree at ROOT (default: the one this package is in), as
+    `git rev-parse --short HEAD` gives it, with "-dirty" when tracked files have changes; None
+    when the package is installed, ROOT is not the top of a git clone, or git is missing."""
+    from . import SOURCE_ROOT
+    root = root or SOURCE_ROOT
+    if not root:
+        return None
+
+    # GIT_OPTIONAL_LOCKS=0: `git status` leaves the index alone (no lock a commit could meet).
+    env = dict(os.environ, GIT_OPTIONAL_LOCKS="0")
+
+    def git(*args):
+        done = subprocess.run(["git", "-C", root, *args], capture_output=True, text=True, timeout=60,
+                              env=env)
+        if done.returncode != 0:
+            raise OSError(done.stderr.strip())
+        return done.stdout.strip()
+
+    try:
+        if os.path.realpath(git("rev-parse", "--show-toplevel")) != os.path.realpath(root):
+            return None
+        commit = git("rev-parse", "--short", "HEAD")
+        return commit + ("-dirty" if git("status", "--porcelain", "--untracked-files=no") else "")
+    except (OSError, subprocess.SubprocessError):
+        return None
+
+
+def write_report(output_dir, title, image, report, about="", validation="", resolution=None):
     """Writes report.json with every entry and report.md with ABOUT (what the run is), the picture,
-    the scalar entries rounded to three significant figures, and VALIDATION."""
+    the scalar entries rounded to three significant figures, and VALIDATION. Both also say which
+    CraterKit wrote them: report.json's "craterkit_version" and "git_commit" (after "example"),
+    a line under report.md's title. RESOLUTION maps entries to the resolution of their
+    measurement (a crater's lengths: the grain radius); report.md gives them to its decimal place."""
+    from . import __version__
+    commit = git_commit()
+    stamped = {}
+    if "example" in report:
+        stamped["example"] = report["example"]
+    stamped["craterkit_version"] = __version__
+    stamped["git_commit"] = commit
+    stamped.update((k, v) for k, v in report.items() if k not in stamped)
     with open(os.path.join(output_dir, "report.json"), "w") as f:
-        json.dump(report, f, indent=2)
+        json.dump(stamped, f, indent=2)
     with open(os.path.join(output_dir, "report.md"), "w") as f:
         f.write(f"# CraterKit: {title}\n\n")
+        f.write(f"CraterKit {__version__}" + (f", commit {commit}" if commit else "") + "\n\n")
         if about:
             f.write(about.strip() + "\n\n")
         f.write(f"![{title}]({image})\n\n| quantity | value |\n|---|---|\n")
         for key, value in report.items():
             if not isinstance(value, (list, dict)):
-                f.write(f"| {key} | {rounded(value)} |\n")
+                shown = to_resolution(value, (resolution or {}).get(key, 0.0))
+                f.write(f"| {key} | {shown} |\n")
         if validation:
             f.write("\n## Validation\n\n" + validation.strip() + "\n")

@@ -515,10 +515,22 @@ def report_entries(args, sc, run):
     }
 
 
+CRATER_LENGTHS = ("crater_diameter_m", "rim_diameter_m", "crater_depth_m", "rim_height_m",
+                  "crater_depth_below_rim_m", "deepest_point_depth_m", "deepest_point_depth_below_rim_m")
+
+
+def report_resolution(run):
+    """The resolution of the report's crater lengths: the surface is the grains' tops, so each
+    length is known to about a grain radius (report.md gives it to that decimal place)."""
+    return {key: run.grain_radius for key in CRATER_LENGTHS}
+
+
 def about(args, sc, run):
     """report.md's opening paragraph: what this run is, and what it is not."""
+    from .report import to_resolution
     m, found, ryugu = run.measures, run.measures["found"], args.gravity == RYUGU_GRAVITY
     across = m["diameter"] / (2.0 * run.grain_radius) if found else 0.0
+    length = lambda value: to_resolution(value, run.grain_radius)  # noqa: E731
     text = (f"**What this run is.** The SCI impactor ({args.impactor_mass:g} kg of {args.impactor_material} at "
             f"{args.impact_speed:g} m/s) into {args.target_material} under g = {args.gravity:g} m/s^2"
             + (" (Ryugu's gravity)" if ryugu else
@@ -529,8 +541,8 @@ def about(args, sc, run):
             + (f", its DEM stage run by LAMMPS on {args.lammps_ranks} MPI ranks from the deck in lammps/. "
                if args.dem_engine == "lammps" else ". "))
     if found:
-        text += (f"The crater is {m['diameter']:.3g} m wide ({across:.0f} grain diameters) and "
-                 f"{m['depth']:.3g} m deep ({m['depth'] / (2.0 * run.grain_radius):.1f} grain diameters), "
+        text += (f"The crater is {length(m['diameter'])} m wide ({across:.0f} grain diameters) and "
+                 f"{length(m['depth'])} m deep ({m['depth'] / (2.0 * run.grain_radius):.1f} grain diameters), "
                  f"{m['diameter'] / sc.d_pi:.2f} of the pi-scaling diameter {sc.d_pi:.3g} m; its depth is "
                  f"{m['depth'] / m['diameter']:.2f} of its diameter (SCI crater: "
                  f"{SCI_CRATER['depth'] / SCI_CRATER['diameter']:.2f}).")
