@@ -1,6 +1,8 @@
 """Small helpers for CraterKit's pvbatch tests."""
 
 import contextlib
+import subprocess
+import time
 
 
 class Checker:
@@ -21,6 +23,15 @@ class Checker:
     def close(self):
         print(f"{self.name}: {self.passed} passed, {len(self.failures)} failed", flush=True)
         return 1 if self.failures else 0
+
+
+def timed_run(args, **kwargs):
+    """Runs ARGS, capturing its output as text, and prints the command with its seconds and exit
+    status; returns the CompletedProcess (keyword arguments go to subprocess.run)."""
+    start = time.time()
+    done = subprocess.run(args, capture_output=True, text=True, **kwargs)
+    print(f"$ {' '.join(args)}  ({time.time() - start:.1f} s, exit {done.returncode})", flush=True)
+    return done
 
 
 @contextlib.contextmanager

@@ -18,26 +18,15 @@ Usage: test_install.py BUILD_DIR SOURCE_DIR VERSION
 import json
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
-import time
 
 build_dir, source_dir, version = os.path.realpath(sys.argv[1]), os.path.realpath(sys.argv[2]), sys.argv[3]
-failures = []
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "python"))
+from craterkit.testing import Checker, timed_run as run  # noqa: E402
 
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print(f"FAIL: {message}", flush=True)
-
-
-def run(args, **kwargs):
-    start = time.time()
-    done = subprocess.run(args, capture_output=True, text=True, **kwargs)
-    print(f"$ {' '.join(args)}  ({time.time() - start:.1f} s, exit {done.returncode})", flush=True)
-    return done
+checker = Checker("install test")
+check, failures = checker.check, checker.failures
 
 
 def plugin_dir_of_build():

@@ -4,37 +4,16 @@
 #include "common/Error.h"
 #include "common/Random.h"
 
+#include "ComponentsOracle.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
-#include <queue>
 
 using namespace craterkit;
 
 namespace {
-// Components by breadth-first search over an adjacency given as a predicate on pairs.
-template <class Linked> std::vector<int> oracle(std::size_t n, Linked&& linked) {
-  std::vector<int> comp(n, -1);
-  int next = 0;
-  for (std::size_t s = 0; s < n; ++s) {
-    if (comp[s] >= 0)
-      continue;
-    std::queue<std::size_t> q;
-    q.push(s);
-    comp[s] = next;
-    while (!q.empty()) {
-      const std::size_t a = q.front();
-      q.pop();
-      for (std::size_t b = 0; b < n; ++b)
-        if (comp[b] < 0 && linked(a, b))
-          comp[b] = next, q.push(b);
-    }
-    ++next;
-  }
-  return comp;
-}
-
 // The two labellings describe the same partition.
 bool samePartition(const std::vector<long long>& a, const std::vector<int>& b) {
   std::map<long long, int> ab;
@@ -63,7 +42,7 @@ TEST(Fragments, ContactsAndBondsMatchABruteForceOracle) {
     FragmentParams par;
     par.tolerance = 0.02;
     const FragmentResult res = analyseFragments(x, r, m, v, par);
-    const auto comp = oracle(n, [&](std::size_t a, std::size_t b) {
+    const auto comp = componentsOracle(n, [&](std::size_t a, std::size_t b) {
       double d2 = 0.0;
       for (int k = 0; k < 3; ++k)
         d2 += (x[3 * a + k] - x[3 * b + k]) * (x[3 * a + k] - x[3 * b + k]);
@@ -90,8 +69,9 @@ TEST(Fragments, ContactsAndBondsMatchABruteForceOracle) {
       adj[a][b] = adj[b][a] = 1;
     }
     const FragmentResult rb = analyseFragments(x, r, m, v, bonded);
-    EXPECT_TRUE(samePartition(
-        rb.fragmentId, oracle(n, [&](std::size_t a, std::size_t b) { return adj[a][b] != 0; })));
+    EXPECT_TRUE(samePartition(rb.fragmentId, componentsOracle(n, [&](std::size_t a, std::size_t b) {
+                                return adj[a][b] != 0;
+                              })));
   }
 }
 

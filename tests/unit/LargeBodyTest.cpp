@@ -13,6 +13,8 @@
 #include "handoff/Split.h"
 #include "handoff/VelocityMap.h"
 
+#include "ComponentsOracle.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,7 +22,6 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
-#include <queue>
 #include <set>
 #include <utility>
 #include <vector>
@@ -64,25 +65,11 @@ double dist2(const std::vector<double>& x, std::size_t a, std::size_t b) {
 std::vector<long long> oracleFragments(const std::vector<double>& x, const std::vector<double>& r,
                                        const std::vector<double>& m, double tolerance) {
   const std::size_t n = r.size();
-  std::vector<long long> comp(n, -1);
-  long long next = 0;
-  for (std::size_t s = 0; s < n; ++s) {
-    if (comp[s] >= 0)
-      continue;
-    std::queue<std::size_t> q;
-    q.push(s);
-    comp[s] = next;
-    while (!q.empty()) {
-      const std::size_t a = q.front();
-      q.pop();
-      for (std::size_t b = 0; b < n; ++b) {
-        const double cut = (r[a] + r[b]) * (1.0 + tolerance);
-        if (comp[b] < 0 && dist2(x, a, b) <= cut * cut)
-          comp[b] = next, q.push(b);
-      }
-    }
-    ++next;
-  }
+  const std::vector<int> comp = componentsOracle(n, [&](std::size_t a, std::size_t b) {
+    const double cut = (r[a] + r[b]) * (1.0 + tolerance);
+    return dist2(x, a, b) <= cut * cut;
+  });
+  const long long next = comp.empty() ? 0 : 1 + *std::max_element(comp.begin(), comp.end());
   std::vector<double> mass(static_cast<std::size_t>(next), 0.0);
   for (std::size_t i = 0; i < n; ++i)
     mass[static_cast<std::size_t>(comp[i])] += m[i];
@@ -93,9 +80,10 @@ std::vector<long long> oracleFragments(const std::vector<double>& x, const std::
   });
   for (std::size_t k = 0; k < order.size(); ++k)
     rank[static_cast<std::size_t>(order[k])] = static_cast<long long>(k);
-  for (long long& c : comp)
-    c = rank[static_cast<std::size_t>(c)];
-  return comp;
+  std::vector<long long> ids(n);
+  for (std::size_t i = 0; i < n; ++i)
+    ids[i] = rank[static_cast<std::size_t>(comp[i])];
+  return ids;
 }
 
 } // namespace
