@@ -127,13 +127,14 @@ def parse_args(argv):
 
 def main(argv):
     args = parse_args(argv)
-    if args.dem_engine == "lammps":  # before a long SPH stage: lmp, mpirun and the deck's styles
+    out = args.output_dir
+    sph_to_run = not (args.sph_state or (args.resume and os.path.isfile(os.path.join(out, "sph_handoff.vtp"))))
+    if args.dem_engine == "lammps" and sph_to_run:  # lmp, mpirun and the deck's styles, before the SPH stage
         from craterkit.lammps import LammpsError, check_lammps
         try:
             check_lammps()
         except LammpsError as error:
             sys.exit(f"--dem-engine lammps: {error}")
-    out = args.output_dir
     os.makedirs(out, exist_ok=True)
     simple = load_plugin()
     sc = sci.scales(args.gravity, args.impactor_mass, args.impact_speed, args.impactor_material,
