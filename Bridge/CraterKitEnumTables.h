@@ -10,6 +10,7 @@
 #include "bed/GranularBed.h"
 #include "bed/SizeDistribution.h"
 #include "bonded/BondedBody.h"
+#include "bonded/ShockViscosity.h"
 #include "common/Container.h"
 #include "common/Error.h"
 #include "dem/DemSolver.h"
@@ -75,10 +76,12 @@ inline const Table<Gravity::Type, 3> kGravityModel{"DEMIntegrator",
                                                      {2, "PointMass", Gravity::Type::PointMass}}}};
 
 // GranularBed.
-inline const Table<GranularBedParams::Packing, 2> kPacking{
+inline const Table<GranularBedParams::Packing, 3> kPacking{
     "GranularBed",
     "Packing",
-    {{{0, "RCP", GranularBedParams::Packing::RCP}, {1, "HCP", GranularBedParams::Packing::HCP}}}};
+    {{{0, "RCP", GranularBedParams::Packing::RCP},
+      {1, "HCP", GranularBedParams::Packing::HCP},
+      {2, "Loose", GranularBedParams::Packing::Loose}}}};
 
 inline const Table<Container::Type, 2> kBedContainer{
     "GranularBed",
@@ -138,6 +141,13 @@ inline const Table<ProjectileShape, 2> kProjectileShape{
     "ProjectileShape",
     {{{0, "Sphere", ProjectileShape::Sphere}, {1, "Cylinder", ProjectileShape::Cylinder}}}};
 
+// The dissipative term by the name of its class (bonded/ShockViscosity.h); 0 is the paper's model.
+inline const Table<BondedDissipation, 2> kDissipation{
+    "BondedImpact",
+    "Dissipation",
+    {{{0, "None", BondedDissipation::None},
+      {1, "ShockViscosity", BondedDissipation::ShockViscosity}}}};
+
 // LAMMPSDeckWriter: DEMIntegrator's DEM choices under the writer's name (the same rows, so that
 // a deck is set up as the integrator would run).
 inline const Table<std::string_view, 2> kDeckContactLaw{"LAMMPSDeckWriter", "ContactLaw",
@@ -161,6 +171,7 @@ template <class F> void forEachTable(F&& f) {
   f(kTargetShape);
   f(kKernel);
   f(kProjectileShape);
+  f(kDissipation);
   f(kDeckContactLaw);
   f(kDeckContainer);
   f(kDeckGravityModel);

@@ -59,10 +59,18 @@ void vtkCraterKitBondedImpact::BuildRun() {
   p.seed = static_cast<std::uint64_t>(this->Seed);
   BondedSolverParams sp;
   sp.timeStep = this->TimeStep;
+  sp.dissipation = enums::kDissipation.toSolver(this->Dissipation);
+  sp.shockViscosityLinear = this->ShockViscosityLinear;
+  sp.shockViscosityQuadratic = this->ShockViscosityQuadratic;
+  sp.shockViscosityThreshold = this->ShockViscosityThreshold;
+  sp.validate(); // refused by name before the set-up is built
   this->Run = std::make_unique<BondedRun>(buildBondedImpact(p), sp,
                                           static_cast<std::size_t>(std::max(0, this->KeptStates)));
   craterkit::bridge::resumeIfAsked(*this->Run, this->ResumeFromCheckpoint != 0,
                                    this->CheckpointFile);
+  // A resume from an old checkpoint, without a checksum, warns.
+  for (const std::string& w : this->Run->solver().warnings())
+    vtkWarningMacro(<< w);
 }
 
 int vtkCraterKitBondedImpact::RequestData(vtkInformation*, vtkInformationVector**,
@@ -97,6 +105,7 @@ int vtkCraterKitBondedImpact::RequestData(vtkInformation*, vtkInformationVector*
   pd->AddArray(b::idArray("Id", a.id));
   pd->AddArray(b::intArray("BondCount", a.bondCount));
   pd->AddArray(b::intArray("FragmentId", a.fragmentId));
+  pd->AddArray(b::doubleArray("InternalEnergy", 1, a.internalEnergy));
   pd->SetActiveScalars("FragmentId");
   b::addFields(output->GetFieldData(), bondedFields(solver, frag, this->CloudMassFraction));
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
@@ -114,7 +123,10 @@ void vtkCraterKitBondedImpact::PrintSelf(ostream& os, vtkIndent indent) {
       this->Epsilon, "Kappa", this->Kappa, "CutoffRatio", this->CutoffRatio, "ReferenceSigma",
       this->ReferenceSigma, "Temperature", this->Temperature, "Seed", this->Seed, "TimeStep",
       this->TimeStep, "EndTime", this->EndTime, "OutputInterval", this->OutputInterval,
-      "CloudMassFraction", this->CloudMassFraction, "CheckpointInterval", this->CheckpointInterval,
-      "ResumeFromCheckpoint", this->ResumeFromCheckpoint, "KeptStates", this->KeptStates,
-      "CheckpointFile", this->CheckpointFile);
+      "CloudMassFraction", this->CloudMassFraction, "Dissipation", this->Dissipation,
+      "ShockViscosityLinear", this->ShockViscosityLinear, "ShockViscosityQuadratic",
+      this->ShockViscosityQuadratic, "ShockViscosityThreshold", this->ShockViscosityThreshold,
+      "CheckpointInterval", this->CheckpointInterval, "ResumeFromCheckpoint",
+      this->ResumeFromCheckpoint, "KeptStates", this->KeptStates, "CheckpointFile",
+      this->CheckpointFile);
 }

@@ -13,7 +13,8 @@
  * Time-dependent: output times 0, OutputInterval, ..., EndTime (the state is the first step at
  * or after the time); an earlier time restarts from a kept snapshot. Output: one vertex per
  * particle with Velocity, Radius, Mass, Density, Material (0 projectile, 1 plate), Id,
- * BondCount (intact bonds) and FragmentId (0 the largest); field data with Time, Step,
+ * BondCount (intact bonds), FragmentId (0 the largest) and InternalEnergy (J/kg, with
+ * Dissipation ShockViscosity); field data with Time, Step,
  * BrokenBonds, the energies, momentum and the debris-cloud measures of the paper's Section 3.
  */
 #ifndef vtkCraterKitBondedImpact_h
@@ -87,6 +88,16 @@ public:
   vtkGetMacro(KeptStates, int);
   vtkSetMacro(CloudMassFraction, double);
   vtkGetMacro(CloudMassFraction, double);
+  // The dissipative term beyond the paper: 0 None (the paper's model), 1 ShockViscosity
+  // (craterkit::ShockViscosity, its three parameters below).
+  vtkSetMacro(Dissipation, int);
+  vtkGetMacro(Dissipation, int);
+  vtkSetMacro(ShockViscosityLinear, double);
+  vtkGetMacro(ShockViscosityLinear, double);
+  vtkSetMacro(ShockViscosityQuadratic, double);
+  vtkGetMacro(ShockViscosityQuadratic, double);
+  vtkSetMacro(ShockViscosityThreshold, double);
+  vtkGetMacro(ShockViscosityThreshold, double);
 
 protected:
   vtkCraterKitBondedImpact();
@@ -124,6 +135,10 @@ private:
   int ResumeFromCheckpoint = 0;
   int KeptStates = 8;
   double CloudMassFraction = 0.95;
+  int Dissipation = 0;
+  double ShockViscosityLinear = 0.0;
+  double ShockViscosityQuadratic = 0.05;
+  double ShockViscosityThreshold = 500.0;
 
   std::unique_ptr<craterkit::BondedRun> Run;
   vtkTimeStamp RunBuildTime;

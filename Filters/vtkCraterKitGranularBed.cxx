@@ -37,6 +37,9 @@ int vtkCraterKitGranularBed::RequestData(vtkInformation*, vtkInformationVector**
   p.settle = this->Settle != 0;
   p.settlingGravity = this->SettlingGravity;
   p.settlingFriction = this->SettlingFriction;
+  p.stageMaxExpectedSpeed = this->DEMMaxExpectedSpeed;
+  p.stageMaxOverlap = this->DEMMaxOverlap;
+  p.stageNormalStiffness = this->DEMNormalStiffness;
 
   ParticleSet bed;
   GranularBedReport report;
@@ -60,14 +63,23 @@ int vtkCraterKitGranularBed::RequestData(vtkInformation*, vtkInformationVector**
   bridge::addField(fd, "BulkPackingFraction", report.bulkPackingFraction);
   bridge::addField(fd, "TopHeight", report.topHeight);
   bridge::addField(fd, "NumberOfParticles", static_cast<double>(report.particles));
-  if (p.packing == GranularBedParams::Packing::RCP && p.settle) {
+  bridge::addField(fd, "CoordinationNumber", report.coordinationNumber);
+  if (p.settles()) {
     bridge::addField(fd, "Settled", report.settled ? 1.0 : 0.0);
     bridge::addField(fd, "SettlingTime", report.settlingTime);
     bridge::addField(fd, "SettlingSteps", static_cast<double>(report.settlingSteps));
     bridge::addField(fd, "SettlingGravity", p.settlingGravity);
+    bridge::addField(fd, "RestNormalStiffness", report.stageStiffness);
+    bridge::addField(fd, "RestTimeStep", report.stageTimeStep);
+    bridge::addField(fd, "AtRest", report.atRest ? 1.0 : 0.0);
+    bridge::addField(fd, "RestSpeed", report.restSpeed);
     if (!report.settled)
       vtkWarningMacro(<< "the bed was still moving after " << report.settlingTime
                       << " s of settling; its packing may be looser than a settled one");
+    else if (!report.atRest)
+      vtkWarningMacro(<< "the bed had not come to rest in the DEM stage's contact law after "
+                      << report.restSteps << " steps: its fastest grain moved at "
+                      << report.restSpeed << " sqrt(g r)");
   }
   return 1;
 }
@@ -95,4 +107,7 @@ void vtkCraterKitGranularBed::PrintSelf(ostream& os, vtkIndent indent) {
   os << indent << "Settle: " << this->Settle << "\n";
   os << indent << "SettlingGravity: " << this->SettlingGravity << "\n";
   os << indent << "SettlingFriction: " << this->SettlingFriction << "\n";
+  os << indent << "DEMMaxExpectedSpeed: " << this->DEMMaxExpectedSpeed << "\n";
+  os << indent << "DEMMaxOverlap: " << this->DEMMaxOverlap << "\n";
+  os << indent << "DEMNormalStiffness: " << this->DEMNormalStiffness << "\n";
 }

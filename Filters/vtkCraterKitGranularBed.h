@@ -2,8 +2,10 @@
  * @class vtkCraterKitGranularBed
  * @brief Source: a granular bed of spheres in a box or hemispherical bowl.
  *
- * HCP lattice (packing fraction 0.7405) or random placement without overlaps
- * (RCP before DEM settling); monodisperse, uniform or power-law radii.
+ * HCP lattice (packing fraction 0.7405), a random packing settled with the DEM and
+ * brought to rest in the DEM stage's contact law (RCP; without settling, random placement
+ * without overlaps), or a loose random packing poured with high friction (Loose);
+ * monodisperse, uniform or power-law radii.
  * Thin adapter over craterkit::generateGranularBed (Solvers/bed/GranularBed.h).
  * Output: one vertex per particle with the CraterKit point arrays, and field data
  * recording the container and generation parameters and the measured bulk packing.
@@ -20,11 +22,11 @@ public:
   vtkTypeMacro(vtkCraterKitGranularBed, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum PackingTypes { RCP = 0, HCP = 1 };
+  enum PackingTypes { RCP = 0, HCP = 1, LOOSE = 2 };
   enum ContainerTypes { BOX = 0, BOWL = 1 };
   enum SizeDistributions { MONODISPERSE = 0, UNIFORM = 1, POWER_LAW = 2 };
 
-  vtkSetClampMacro(Packing, int, RCP, HCP);
+  vtkSetClampMacro(Packing, int, RCP, LOOSE);
   vtkGetMacro(Packing, int);
   vtkSetClampMacro(Container, int, BOX, BOWL);
   vtkGetMacro(Container, int);
@@ -61,6 +63,12 @@ public:
   vtkGetMacro(SettlingGravity, double);
   vtkSetMacro(SettlingFriction, double);
   vtkGetMacro(SettlingFriction, double);
+  vtkSetMacro(DEMMaxExpectedSpeed, double);
+  vtkGetMacro(DEMMaxExpectedSpeed, double);
+  vtkSetMacro(DEMMaxOverlap, double);
+  vtkGetMacro(DEMMaxOverlap, double);
+  vtkSetMacro(DEMNormalStiffness, double);
+  vtkGetMacro(DEMNormalStiffness, double);
 
 protected:
   vtkCraterKitGranularBed();
@@ -85,6 +93,9 @@ protected:
   int Settle = 1;
   double SettlingGravity = 9.81;
   double SettlingFriction = 0.1;
+  double DEMMaxExpectedSpeed = 1.0;
+  double DEMMaxOverlap = 0.01;
+  double DEMNormalStiffness = 0.0;
 
 private:
   vtkCraterKitGranularBed(const vtkCraterKitGranularBed&) = delete;

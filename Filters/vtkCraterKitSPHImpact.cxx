@@ -102,6 +102,9 @@ void vtkCraterKitSPHImpact::BuildRun() {
                                        static_cast<std::size_t>(std::max(0, this->KeptStates)));
   craterkit::bridge::resumeIfAsked(*this->Run, this->ResumeFromCheckpoint != 0,
                                    this->CheckpointFile);
+  // A resume from an old checkpoint, without a checksum, warns.
+  for (const std::string& w : this->Run->warnings())
+    vtkWarningMacro(<< w);
 }
 
 int vtkCraterKitSPHImpact::RequestData(vtkInformation*, vtkInformationVector**,

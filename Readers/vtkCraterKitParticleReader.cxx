@@ -6,7 +6,7 @@
 #include "io/FileBytes.h"
 #include "io/LammpsDump.h"
 #include "io/PkdgravSs.h"
-#include "sph/SphRun.h"
+#include "sph/SphCheckpoint.h"
 
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -17,6 +17,7 @@
 #include <cctype>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 vtkStandardNewMacro(vtkCraterKitParticleReader);
 
@@ -58,11 +59,15 @@ int FormatOf(const std::string& name) {
 
 // An SPH checkpoint (SPHImpact): positions, Velocity, Mass, Density, Material, Id and the SPH
 // state as extra arrays (Pressure is not stored: it follows from the material's equation of state).
-craterkit::ParticleFrame FrameOfSphCheckpoint(const std::string& path) {
+craterkit::ParticleFrame FrameOfSphCheckpoint(const std::string& path,
+                                              std::vector<std::string>& warnings) {
   using namespace craterkit;
   double time = 0.0, next = 0.0;
   std::size_t steps = 0;
-  const SphState s = readSphCheckpoint(path, time, steps, next);
+  std::string warning;
+  const SphState s = readSphCheckpoint(path, time, steps, next, &warning);
+  if (!warning.empty())
+    warnings.push_back(warning);
   ParticleFrame f;
   f.time = time;
   f.timestep = static_cast<long long>(steps);
@@ -94,10 +99,14 @@ craterkit::ParticleFrame FrameOfSphCheckpoint(const std::string& path) {
   return f;
 }
 
-craterkit::ParticleFrame FrameOfCheckpoint(const std::string& path) {
+// A checkpoint whose checksum fails is refused (InputError naming the file); an old one
+// without a checksum reads with WARNINGS.
+craterkit::ParticleFrame FrameOfCheckpoint(const std::string& path,
+                                           std::vector<std::string>& warnings) {
   if (EndsWith(Lower(path), ".cksph"))
-    return FrameOfSphCheckpoint(path);
+    return FrameOfSphCheckpoint(path, warnings);
   craterkit::DemCheckpointState state = craterkit::readDemCheckpointState(path);
+  warnings.insert(warnings.end(), state.warnings.begin(), state.warnings.end());
   craterkit::ParticleFrame f;
   f.particles = std::move(state.particles);
   f.time = state.time;
@@ -149,10 +158,14 @@ void vtkCraterKitParticleReader::Load() {
         parseSs(FileBytes(file).view(), file, this->PkdgravUnits != 0));
     cache->Times.push_back(cache->Single->time);
     break;
-  case CRATERKIT_CHECKPOINT:
-    cache->Single = std::make_unique<ParticleFrame>(FrameOfCheckpoint(file));
+  case CRATERKIT_CHECKPOINT: {
+    std::vector<std::string> warnings;
+    cache->Single = std::make_unique<ParticleFrame>(FrameOfCheckpoint(file, warnings));
+    for (const std::string& w : warnings)
+      vtkWarningMacro(<< w);
     cache->Times.push_back(cache->Single->time);
     break;
+  }
   default:
     throw InputError(file + ": unknown particle format (extensions: .dump, .liggghts, .lammpstrj, "
                             ".ss, .ckdem, .cksph, optionally .gz); set Format");

@@ -9,6 +9,8 @@ length ratio R = L_a/L_r and axial velocity v_a/v0 next to the paper's and the e
 The cloud is measured by mass quantiles (--cloud-mass-fraction, Solvers/bonded/BondedFragments.h):
 the outline of the bulk that a photograph shows, not the stray particles; v_a is also given as
 the leading edge's displacement between the last two outputs, the experiment's measure.
+--dissipation ShockViscosity runs the model with shock heating (docs/physics.md §5.1); --compare
+runs the paper's model and that one side by side (debris_cloud_compare.png).
 
     scripts/pvbatch examples/hvi_debris_cloud.py --help
 """
@@ -51,6 +53,10 @@ def parse_args(argv):
     p.add_argument("--cloud-mass-fraction", type=float, default=0.95,
                    help="fraction of the cloud's mass inside the measured extents (1: every "
                         "particle, max - min); see Solvers/bonded/BondedFragments.h")
+    p.add_argument("--dissipation", choices=("None", "ShockViscosity"), default="None",
+                   help="None: the paper's model; ShockViscosity: with shock heating")
+    p.add_argument("--compare", action="store_true",
+                   help="run both models and show their clouds side by side")
     p.add_argument("--output-dir", default="results/hvi_debris_cloud")
     p.add_argument("--width", type=int, default=1200, help="image width in pixels")
     return p.parse_args(argv)
@@ -96,82 +102,113 @@ def render_side_view(simple, source, data, filename, width, label):
     simple.Delete(view)
 
 
-def main(argv):
-    args = parse_args(argv)
-    os.makedirs(args.output_dir, exist_ok=True)
-    simple = load_plugin()
+def run_model(simple, args, dissipation):
+    """One BondedImpact run to --end-time with the given Dissipation, printing each output;
+    returns the source, its last output and the leading edge's speed from the last two outputs."""
     source = simple.BondedImpact(ParticleCount=args.particles, Spacing=args.spacing,
                                  PlateWidthRatio=args.plate_width_ratio,
                                  ImpactSpeed=args.impact_speed,
                                  ThicknessRatio=args.thickness_ratio, Diameter=args.diameter,
-                                 Seed=args.seed, EndTime=args.end_time,
+                                 Seed=args.seed, EndTime=args.end_time, Dissipation=dissipation,
                                  CloudMassFraction=args.cloud_mass_fraction,
                                  OutputInterval=args.end_time / max(1, args.outputs))
-    print_progress(source, "BondedImpact")
-    start = time.time()
-    data = None
-    edges = []  # (time, leading edge behind the plate): the experiment's front speed
+    print_progress(source, f"BondedImpact ({dissipation})")
+    data, edges, energies = None, [], []  # edges: (time, leading edge behind the plate)
     for t in source.TimestepValues:
         source.UpdatePipeline(t)
         data = fetch(source)
         if data.GetNumberOfPoints() == 0:
+            return source, None, 0.0, 0.0
+        edges.append((field_value(data, "Time"), field_value(data, "DebrisCloudLeadingEdge")))
+        energies.append(field_value(data, "TotalEnergy"))
+        print(f"{dissipation}: t = {1e6 * field_value(data, 'Time'):6.2f} us, step "
+              f"{int(field_value(data, 'Step'))}, broken bonds {int(field_value(data, 'BrokenBonds'))}, "
+              f"F {field_value(data, 'Fragmentation'):.3f}, R {field_value(data, 'DebrisCloudRatio'):.3f}, "
+              f"v_a/v0 {field_value(data, 'AxialVelocityRatio'):.3f}, internal energy "
+              f"{field_value(data, 'InternalEnergyTotal'):.4g} J", flush=True)
+    (t1, s1), (t2, s2) = edges[-2], edges[-1]  # Section 3.1's measure
+    va_snapshots = (s2 - s1) / (t2 - t1) / args.impact_speed if t2 > t1 and s1 > 0 else 0.0
+    drift = (energies[-1] - energies[0]) / energies[0] if energies[0] else 0.0
+    return source, data, va_snapshots, drift
+
+
+def measures(data, va_snapshots, drift):
+    """The report's figures of one run's last output."""
+    value = lambda name: field_value(data, name)  # noqa: E731
+    return {"F_measured": round(value("Fragmentation"), 4), "R_measured": round(value("DebrisCloudRatio"), 4),
+            "va_over_v0_measured": round(value("AxialVelocityRatio"), 4),
+            "va_over_v0_two_snapshots": round(va_snapshots, 4),
+            "front_sharpness": round(value("DebrisCloudFrontSharpness"), 4),
+            "largest_cloud_fragment_fraction": round(value("LargestCloudFragmentFraction"), 4),
+            "internal_energy_J": value("InternalEnergyTotal"), "total_energy_J": value("TotalEnergy"),
+            "total_energy_drift": drift, "broken_bonds": int(value("BrokenBonds")), "bonds": int(value("Bonds")),
+            "cloud_particles": int(value("CloudParticles")), "cloud_fragments": int(value("CloudFragments")),
+            "debris_cloud_axial_length_m": value("DebrisCloudAxialLength"),
+            "debris_cloud_radial_extent_m": value("DebrisCloudRadialExtent")}
+
+
+def side_by_side(images, filename):
+    """The PNG IMAGES next to each other, left to right, in FILENAME."""
+    from vtkmodules.vtkFiltersCore import vtkImageAppend
+    from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
+    append = vtkImageAppend()
+    append.SetAppendAxis(0)
+    for image in images:
+        reader = vtkPNGReader()
+        reader.SetFileName(image)
+        reader.Update()
+        append.AddInputData(reader.GetOutput())
+    writer = vtkPNGWriter()
+    writer.SetFileName(filename)
+    writer.SetInputConnection(append.GetOutputPort())
+    writer.Write()
+
+
+def main(argv):
+    args = parse_args(argv)
+    os.makedirs(args.output_dir, exist_ok=True)
+    simple = load_plugin()
+    models = ("None", "ShockViscosity") if args.compare else (args.dissipation,)
+    runs, images = {}, []
+    for model in models:
+        start = time.time()
+        source, data, va_snapshots, drift = run_model(simple, args, model)
+        if data is None:
             print("error: the bonded run failed; see the error above", file=sys.stderr)
             return 1
-        edges.append((field_value(data, "Time"), field_value(data, "DebrisCloudLeadingEdge")))
-        print(f"t = {1e6 * field_value(data, 'Time'):6.2f} us, step "
-              f"{int(field_value(data, 'Step'))}, broken bonds "
-              f"{int(field_value(data, 'BrokenBonds'))}, "
-              f"F {field_value(data, 'Fragmentation'):.3f}, "
-              f"R {field_value(data, 'DebrisCloudRatio'):.3f}, "
-              f"v_a/v0 {field_value(data, 'AxialVelocityRatio'):.3f}", flush=True)
-    elapsed = time.time() - start
-    n = data.GetNumberOfPoints()
-    steps = int(field_value(data, "Step"))
-    F, R = field_value(data, "Fragmentation"), field_value(data, "DebrisCloudRatio")
-    va = field_value(data, "AxialVelocityRatio")
-    # Section 3.1's measure: the leading edge's displacement between the last two outputs.
-    (t1, s1), (t2, s2) = edges[-2], edges[-1]
-    va_snapshots = (s2 - s1) / (t2 - t1) / args.impact_speed if t2 > t1 and s1 > 0 else 0.0
-    image = os.path.join(args.output_dir, "debris_cloud.png")
-    render_side_view(simple, source, data, image, args.width,
-                     f"{n} particles, v0 = {args.impact_speed / 1000:.2f} km/s, "
-                     f"t/D = {args.thickness_ratio}, t = {1e6 * field_value(data, 'Time'):.1f} us\n"
-                     f"F = {F:.3f}, R = {R:.2f}, v_a/v0 = {va:.3f}")
-    E0 = field_value(data, "TotalEnergy")
-    report = {
-        "example": "hvi_debris_cloud",
-        "particles": n,
-        "impact_speed_m_s": args.impact_speed,
-        "thickness_ratio": args.thickness_ratio,
-        "end_time_s": field_value(data, "Time"),
-        "steps": steps,
-        "time_step_s": field_value(data, "TimeStep"),
-        "broken_bonds": int(field_value(data, "BrokenBonds")),
-        "bonds": int(field_value(data, "Bonds")),
-        "cloud_particles": int(field_value(data, "CloudParticles")),
-        "cloud_fragments": int(field_value(data, "CloudFragments")),
-        "F_measured": round(F, 4),
-        "F_paper": PAPER["F"],
-        "R_measured": round(R, 4),
-        "R_experiment": PAPER["R_experiment"],
-        "R_paper_simulation": PAPER["R_simulation"],
-        "va_over_v0_measured": round(va, 4),
-        "va_over_v0_two_snapshots": round(va_snapshots, 4),
-        "cloud_mass_fraction": args.cloud_mass_fraction,
-        "largest_cloud_fragment_fraction": round(field_value(data, "LargestCloudFragmentFraction"), 4),
-        "va_over_v0_paper": PAPER["va_over_v0"],
-        "debris_cloud_axial_length_m": field_value(data, "DebrisCloudAxialLength"),
-        "debris_cloud_radial_extent_m": field_value(data, "DebrisCloudRadialExtent"),
-        "total_energy_J": E0,
-        "particle_steps_per_s": round(n * steps / elapsed),
-        "run_seconds": round(elapsed, 1),
-        "frames": [os.path.basename(image)],
-    }
-    write_report(args.output_dir, "hypervelocity debris cloud (bonded particles)",
-                 os.path.basename(image), report)
-    print(f"F = {F:.3f}, R = {R:.3f} (experiment 1.55), v_a/v0 = {va:.3f} (two snapshots "
-          f"{va_snapshots:.3f}); {n} particles, "
-          f"{steps} steps in {elapsed:.1f} s; wrote {image}, report.md and report.json")
+        m = measures(data, va_snapshots, drift)
+        m["run_seconds"] = round(time.time() - start, 1)
+        m["particle_steps_per_s"] = round(data.GetNumberOfPoints() * field_value(data, "Step") / m["run_seconds"])
+        runs[model] = m
+        images.append(os.path.join(args.output_dir, "debris_cloud.png" if len(models) == 1 else
+                                   f"debris_cloud_{model}.png"))
+        render_side_view(simple, source, data, images[-1], args.width,
+                         f"{model}: {data.GetNumberOfPoints()} particles, v0 = {args.impact_speed / 1000:.2f} km/s, "
+                         f"t/D = {args.thickness_ratio}, t = {1e6 * field_value(data, 'Time'):.1f} us\n"
+                         f"F = {m['F_measured']:.3f}, R = {m['R_measured']:.2f}, v_a/v0 = "
+                         f"{m['va_over_v0_measured']:.3f}, front {m['front_sharpness']:.3f} L_a")
+        print(f"{model}: F = {m['F_measured']:.3f}, R = {m['R_measured']:.3f} (experiment 1.55), v_a/v0 = "
+              f"{m['va_over_v0_measured']:.3f} (two snapshots {m['va_over_v0_two_snapshots']:.3f}), front width "
+              f"{m['front_sharpness']:.3f} L_a, internal energy {m['internal_energy_J']:.4g} J, total energy "
+              f"drift {drift:.2e}; {int(field_value(data, 'Step'))} steps in {m['run_seconds']} s", flush=True)
+        simple.Delete(source)
+    if args.compare:
+        images.append(os.path.join(args.output_dir, "debris_cloud_compare.png"))
+        side_by_side(images[:2], images[-1])
+    report = {"example": "hvi_debris_cloud", "particles": data.GetNumberOfPoints(),
+              "impact_speed_m_s": args.impact_speed, "thickness_ratio": args.thickness_ratio,
+              "end_time_s": field_value(data, "Time"), "steps": int(field_value(data, "Step")),
+              "time_step_s": field_value(data, "TimeStep"), "cloud_mass_fraction": args.cloud_mass_fraction,
+              "F_paper": PAPER["F"], "R_experiment": PAPER["R_experiment"],
+              "R_paper_simulation": PAPER["R_simulation"], "va_over_v0_paper": PAPER["va_over_v0"],
+              "frames": [os.path.basename(i) for i in images]}
+    if args.compare:
+        report["models"] = runs
+    else:
+        report.update(runs[models[0]], dissipation=models[0])
+    write_report(args.output_dir, "hypervelocity debris cloud (bonded particles)", os.path.basename(images[-1]),
+                 report)
+    print(f"wrote {', '.join(images)}, report.md and report.json")
     return 0
 
 

@@ -151,7 +151,9 @@ def main(argv):
     run.sph_totals, run.impactor_depth = sci.sph_summary(run.sph_data, sc, args.impactor_mass, args.impact_speed,
                                                          run.seconds["sph"])
     clock = sci.stopwatch()
-    bed, run.bed_data, run.surface, run.grain_radius = sci.bed_stage(simple, sc, args.packing, args.particles)
+    rest_speed = sci.dem_stiffness_speed(0.0, sc)  # the bed rests in the DEM stage's law (its least stiffness)
+    bed, run.bed_data, run.surface, run.grain_radius = sci.bed_stage(simple, sc, args.packing, args.particles,
+                                                                     dem_speed=rest_speed, max_overlap=args.max_overlap)
     run.seconds["bed"] = clock()
     run.bed_phi = field_value(run.bed_data, "BulkPackingFraction")
     sci.say(f"      {run.bed_data.GetNumberOfPoints()} particles, packing fraction {run.bed_phi:.3f}, surface at "
@@ -162,6 +164,9 @@ def main(argv):
     vmax, run.carved = sci.handoff_summary(simple, hand, run.dem0, sc, run.surface)
 
     run.max_speed = sci.dem_stiffness_speed(vmax, sc)
+    if run.max_speed > rest_speed:
+        sci.say(f"      the DEM stage is stiffer than the law the bed came to rest in ({rest_speed:.3g} m/s): its "
+                f"overlaps relax by a fraction {1 - rest_speed ** 2 / run.max_speed ** 2:.2f} in its first steps")
     run.t0 = field_value(run.dem0, "Time")
     r_min = min(run.dem0.GetPointData().GetArray("Radius").GetRange())
     sci.say(f"[4/5] DEM to {run.t0 + sc.dem_time:.3g} s with {run.dem0.GetNumberOfPoints()} particles (stiffness "

@@ -28,6 +28,8 @@ ParticleSet prepareBed(const GranularBedParams& p, GranularBedReport& report,
     return hcpLatticeBed(p, progress);
   case GranularBedParams::Packing::RCP:
     return p.settle ? settledRandomBed(p, report, progress) : randomBed(p, report, progress);
+  case GranularBedParams::Packing::Loose:
+    return settledRandomBed(p, report, progress);
   }
   throw InputError("unknown packing");
 }
@@ -49,7 +51,7 @@ void GranularBedParams::validate() const {
   if (packing == Packing::HCP && sizes.type != SizeDistribution::Type::Monodisperse)
     throw InputError("HCP packing is a lattice of equal spheres: choose the Monodisperse "
                      "size distribution, or RCP for a range of radii");
-  if (packing == Packing::RCP &&
+  if (packing != Packing::HCP &&
       (!(packingFraction > 0.0) || packingFraction > kMaxRandomFraction)) {
     msg << "PackingFraction must be in (0, " << kMaxRandomFraction << "] for random placement (got "
         << packingFraction << "); denser beds come from settling with the DEM";
@@ -57,13 +59,26 @@ void GranularBedParams::validate() const {
   }
   if (maxRelaxationIterations <= 0)
     throw InputError("the relaxation sweep limit must be positive");
-  if (packing == Packing::RCP && settle) {
+  if (settles()) {
     if (!(settlingGravity > 0.0) || !std::isfinite(settlingGravity)) {
       msg << "SettlingGravity must be positive (got " << settlingGravity << " m/s^2)";
       throw InputError(msg.str());
     }
     if (!(settlingFriction >= 0.0) || !std::isfinite(settlingFriction)) {
       msg << "SettlingFriction must be non-negative (got " << settlingFriction << ")";
+      throw InputError(msg.str());
+    }
+    if (!(stageMaxExpectedSpeed >= 0.0) || !std::isfinite(stageMaxExpectedSpeed)) {
+      msg << "DEMMaxExpectedSpeed must be non-negative and finite (got " << stageMaxExpectedSpeed
+          << " m/s)";
+      throw InputError(msg.str());
+    }
+    if (!(stageMaxOverlap > 0.0) || !(stageMaxOverlap < 1.0)) {
+      msg << "DEMMaxOverlap must lie in (0, 1) (got " << stageMaxOverlap << ")";
+      throw InputError(msg.str());
+    }
+    if (!std::isfinite(stageNormalStiffness)) {
+      msg << "DEMNormalStiffness must be finite (got " << stageNormalStiffness << " N/m)";
       throw InputError(msg.str());
     }
   }
@@ -85,6 +100,7 @@ ParticleSet generateGranularBed(const GranularBedParams& params, GranularBedRepo
     rep.topHeight = std::max(rep.topHeight, bed.position[3 * i + 2] + bed.radius[i]);
   rep.bulkPackingFraction =
       measurePackingFraction(bed, params.container, 3.0 * params.sizes.largest(), 200000);
+  rep.coordinationNumber = coordinationNumber(bed, params.container, 3.0 * params.sizes.largest());
   reportProgress(progress, 1.0);
   return bed;
 }
@@ -129,6 +145,34 @@ double measurePackingFraction(const ParticleSet& s, const Container& container, 
   }
   return accepted ? static_cast<double>(covered) / static_cast<double>(accepted)
                   : std::numeric_limits<double>::quiet_NaN();
+}
+
+double coordinationNumber(const ParticleSet& s, const Container& container, double margin) {
+  const std::size_t n = s.size();
+  if (n == 0)
+    return std::numeric_limits<double>::quiet_NaN();
+  const double rmax = *std::max_element(s.radius.begin(), s.radius.end());
+  CellList cells;
+  cells.build(s.position.data(), n, 2.0 * rmax);
+  long long grains = 0, contacts = 0;
+#pragma omp parallel for schedule(static) reduction(+ : grains, contacts) if (n >= 512)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* a = &s.position[3 * i];
+    if (!container.inside(a, margin))
+      continue;
+    ++grains;
+    cells.forEachCandidate(a, s.radius[i] + rmax, [&](std::size_t j) {
+      if (j == i)
+        return;
+      const double* b = &s.position[3 * j];
+      const double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                        (a[2] - b[2]) * (a[2] - b[2]);
+      const double reach = (s.radius[i] + s.radius[j]) * (1.0 + 1e-9);
+      contacts += d2 <= reach * reach ? 1 : 0;
+    });
+  }
+  return grains ? static_cast<double>(contacts) / static_cast<double>(grains)
+                : std::numeric_limits<double>::quiet_NaN();
 }
 
 double smallestGap(const ParticleSet& s, std::size_t* first, std::size_t* second) {

@@ -157,9 +157,4 @@ ParticleSet randomBed(const GranularBedParams& p, GranularBedReport& report,
   return randomFill(p, {p.container, p.maxParticles, 0.0, kGrowthSweeps}, report, progress);
 }
 
-int removeOverlaps(ParticleSet& s, const GranularBedParams& p, const Container& container,
-                   const ProgressCallback& progress) {
-  return relaxOverlaps(s, p, container, p.sizes.largest(), false, progress);
-}
-
 } // namespace craterkit

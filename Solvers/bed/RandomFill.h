@@ -32,9 +32,4 @@ ParticleSet randomFill(const GranularBedParams& p, const RandomFillSpec& spec,
 ParticleSet randomBed(const GranularBedParams& p, GranularBedReport& report,
                       const ProgressCallback& progress);
 
-// Removes every overlap of `s` by the same relaxation at full radii (no growth), keeping the
-// centres in `container`. Returns the number of sweeps.
-int removeOverlaps(ParticleSet& s, const GranularBedParams& p, const Container& container,
-                   const ProgressCallback& progress);
-
 } // namespace craterkit

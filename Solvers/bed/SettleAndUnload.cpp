@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 namespace craterkit {
 
@@ -27,19 +28,67 @@ constexpr double kSettleRestitution = 0.3;
 constexpr double kSettleOverlapWarning = 0.3;
 // Settling runs at least this fraction of the fill's free-fall time.
 constexpr double kMinFall = 0.5;
-// Unloading: gravity lowered to this fraction over this many steps per grain layer.
-constexpr double kUnloadGravity = 1.0 / 64.0;
+// The packing fraction a settled bed reaches at most (the raised fill's height is set for it).
+constexpr double kDenseSettled = 0.64;
+constexpr double kLooseSettled = 0.60;
+// Unloading the settled bed, from rest: gravity lowered to kUnloadGravity over
+// kUnloadStepsPerLayer steps per grain layer (lower in one go, the bed's elastic energy is
+// released against a weight too small to hold it together and throws it apart).
+constexpr double kUnloadGravity = 0.25;
 constexpr double kUnloadStepsPerLayer = 25.0;
+// Stiffening to the DEM stage's k_N: at most kStiffening-fold per run; each run starts from rest
+// under full gravity, lowers gravity by the factor the next run stiffens the law over
+// kStiffeningCollisions collision times and holds it kHoldCollisions, so that the stiffer law,
+// under full gravity, starts with the contact forces this one ends with.
+constexpr double kStiffening = 4.0;
+constexpr double kStiffeningCollisions = 20.0;
+constexpr double kHoldCollisions = 10.0;
+// The stiffening runs and the rest: restitution kRestRestitution and kRestStepsPerCollision
+// steps per collision (numerical aids: neither changes where the bed comes to rest). The rest in
+// the stage's law runs in chunks of kRestChunk collision times, at least kRestMin and at most
+// kRestMax of them, until no grain is faster than kRestSpeed sqrt(g r).
+constexpr double kRestRestitution = 0.3;
+constexpr double kRestStepsPerCollision = 12.0;
+constexpr double kRestChunk = 10.0;
+constexpr double kRestMin = 30.0;
+constexpr double kRestMax = 300.0;
+constexpr double kRestSpeed = 5e-3;
 
-// The container the loose fill fills. A settled bed compacts from the loose fraction to ~0.62:
-// fill higher so that it still reaches the surface afterwards (the bowl's wall continues as a
-// cylinder above its rim).
+// The container the loose fill fills. A settled bed compacts from the loose fraction to ~0.62
+// (RCP) or ~0.58 (Loose): fill higher so that it still reaches the surface afterwards (the bowl's
+// wall continues as a cylinder above its rim).
 Container raisedFill(const GranularBedParams& p) {
   Container c = p.container;
   const double depth = c.surfaceHeight - c.floorHeight();
-  c.surfaceHeight +=
-      (0.64 / std::min(p.packingFraction, 0.6) - 1.0) * depth + 2.0 * p.sizes.largest();
+  const double settled =
+      p.packing == GranularBedParams::Packing::Loose ? kLooseSettled : kDenseSettled;
+  c.surfaceHeight += std::max(0.0, settled / std::min(p.packingFraction, 0.6) - 1.0) * depth +
+                     2.0 * p.sizes.largest();
   return c;
+}
+
+// The DEM stage's run of `bed` as DEMIntegrator sets it up with its default contact law and the
+// stage* fields: the container's walls, gravity settlingGravity, k_N and step by setUpDem.
+DemParams stageParams(const ParticleSet& bed, const GranularBedParams& p) {
+  DemSetup setup;
+  setup.normalStiffness = p.stageNormalStiffness;
+  setup.maxExpectedSpeed = p.stageMaxExpectedSpeed;
+  setup.maxOverlap = p.stageMaxOverlap;
+  setup.gravity = Gravity::downward(p.settlingGravity);
+  setup.walls = DemSetup::Walls::Container;
+  setup.container = p.container;
+  return setUpDem(bed, setup).params;
+}
+
+// The stage's k_N for the bed `bed` will be once trimmed to the surface: as stageParams, for a
+// bed as high as the container's fill.
+double trimmedStageStiffness(const ParticleSet& bed, const GranularBedParams& p) {
+  const BedExtent e = scanBed(bed);
+  StiffnessInput in{e.smallestRadius,        e.smallestDensity,
+                    p.stageMaxExpectedSpeed, p.stageMaxOverlap,
+                    p.settlingGravity,       p.container.surfaceHeight - p.container.floorHeight()};
+  in.normalStiffness = p.stageNormalStiffness;
+  return chooseStiffnessAndStep(in).kN;
 }
 
 // Kinetic energy (translation and spin) of the particles whose centre lies below `keepBelow`,
@@ -61,10 +110,19 @@ double keptKineticEnergy(const ParticleSet& s, double keepBelow, std::size_t& ke
   return energy;
 }
 
-// The settling run's DEM: strong damping, the bed's friction, no rolling resistance, and a
-// soft contact law (docs/physics.md §7). The stiffness carries the weight of the filled
-// height at the overlap kSettleOverlap of the lithostatic estimate, not an impact: the step
-// grows as 1/sqrt(k_N), and the overlaps it leaves are taken out by unloading (unloadBed).
+// The particles at rest: velocities and spins zeroed.
+ParticleSet atRest(ParticleSet s) {
+  std::fill(s.velocity.begin(), s.velocity.end(), 0.0);
+  std::fill(s.angularVelocity.begin(), s.angularVelocity.end(), 0.0);
+  return s;
+}
+
+// The settling run's DEM: strong damping, the bed's friction (RCP: SettlingFriction and no
+// rolling resistance; Loose: poured with the DEM stage's default sliding, rolling and twisting
+// friction, high enough to hold a 30 degree slope), and a soft contact law (docs/physics.md §7).
+// The stiffness carries the weight of the filled height at the overlap kSettleOverlap of the
+// lithostatic estimate, not an impact: the step grows as 1/sqrt(k_N). The overlaps it leaves shrink
+// to the DEM stage's by unloading and stiffening.
 DemParams settlingParams(const GranularBedParams& p, const Container& filled) {
   const double g = p.settlingGravity;
   const double rmin = p.sizes.smallest();
@@ -72,8 +130,10 @@ DemParams settlingParams(const GranularBedParams& p, const Container& filled) {
   dp.walls = containerWalls(filled);
   dp.gravity = Gravity::downward(g);
   dp.contact.restitutionN = dp.contact.restitutionT = kSettleRestitution;
-  dp.contact.muS = p.settlingFriction;
-  dp.contact.muR = dp.contact.muT = 0.0;
+  if (p.packing != GranularBedParams::Packing::Loose) { // Loose keeps the stage's defaults
+    dp.contact.muS = p.settlingFriction;
+    dp.contact.muR = dp.contact.muT = 0.0;
+  }
   // The loose fill may overlap by kLooseOverlap; the soft law pushes that apart gently.
   dp.initialOverlapLimit = 2.0 * kLooseOverlap;
   dp.overlapWarning = kSettleOverlapWarning;
@@ -87,25 +147,8 @@ DemParams settlingParams(const GranularBedParams& p, const Container& filled) {
   return dp;
 }
 
-// Unloads a settled bed: gravity falls exponentially to kUnloadGravity of its value over
-// kUnloadStepsPerLayer steps per grain layer of the fill (a few crossings of the bed by a
-// contact wave), so the contacts relax quasi-statically to a 64th of their overlap under the
-// full weight, as a law 64 times stiffer would leave them, at the soft law's step.
-void unloadBed(DemSolver& solver, double g, double height, double meanRadius,
-               const ProgressCallback& progress) {
-  const long steps =
-      std::max(200L, std::lround(kUnloadStepsPerLayer * height / (2.0 * meanRadius)));
-  for (long i = 0; i < steps; ++i) {
-    if (i % 10 == 0) {
-      reportProgress(progress, static_cast<double>(i) / steps);
-      solver.setGravity(Gravity::downward(g * std::pow(kUnloadGravity, double(i) / steps)));
-    }
-    solver.step();
-  }
-}
-
 // Settles a loose bed under gravity with the SSDEM solver until its kinetic energy has
-// decayed, then unloads it (docs/physics.md §7).
+// decayed, then unloads it from rest to kUnloadGravity (docs/physics.md §7). Returns it at rest.
 ParticleSet settleBed(const ParticleSet& loose, const GranularBedParams& p, const Container& filled,
                       GranularBedReport& report, const ProgressCallback& progress) {
   const double g = p.settlingGravity;
@@ -137,13 +180,23 @@ ParticleSet settleBed(const ParticleSet& loose, const GranularBedParams& p, cons
       break;
     }
   }
-  unloadBed(solver, g, height, meanRadius, subRange(progress, 0.9, 1.0));
-  report.settlingTime = solver.time();
-  report.settlingSteps = solver.stepCount();
-  ParticleSet out = solver.particles();
-  std::fill(out.velocity.begin(), out.velocity.end(), 0.0);
-  std::fill(out.angularVelocity.begin(), out.angularVelocity.end(), 0.0);
-  return out;
+  // Unload from rest: the settled bed still moves, slowly against its weight but not against
+  // the unloaded bed's. Gravity falls exponentially over kUnloadStepsPerLayer steps per grain
+  // layer of the fill (a few crossings of the bed by a contact wave).
+  DemSolver unloading(atRest(solver.particles()), dp);
+  const long steps =
+      std::max(200L, std::lround(kUnloadStepsPerLayer * height / (2.0 * meanRadius)));
+  for (long i = 0; i <= steps; ++i) {
+    if (i % 10 == 0 || i == steps) {
+      reportProgress(progress, 0.9 + 0.1 * static_cast<double>(i) / steps);
+      unloading.setGravity(Gravity::downward(g * std::pow(kUnloadGravity, double(i) / steps)));
+    }
+    if (i < steps)
+      unloading.step();
+  }
+  report.settlingTime = solver.time() + unloading.time();
+  report.settlingSteps = solver.stepCount() + unloading.stepCount();
+  return atRest(unloading.particles());
 }
 
 // Keeps the particles whose top is at or below the surface, renumbering the ids.
@@ -159,6 +212,93 @@ ParticleSet trimToSurface(const ParticleSet& s, double surface) {
   return out;
 }
 
+// The contact law of the stiffening runs and the rest: `law`'s coefficients with normal
+// stiffness k (tangential 2/7 of it), strong damping, kRestStepsPerCollision steps per
+// collision of the lightest particle, and the container's walls.
+DemParams restParams(DemParams law, double k, double lightest, const Container& container) {
+  law.walls = containerWalls(container);
+  law.contact.kN = k;
+  law.contact.kT = -1.0;
+  law.contact.restitutionN = law.contact.restitutionT = kRestRestitution;
+  law.dt = pairCollisionTime(lightest, k) / kRestStepsPerCollision;
+  law.warnStepsPerCollision = kRestStepsPerCollision;
+  law.overlapWarning = std::max(law.overlapWarning, kSettleOverlapWarning);
+  law.initialOverlapLimit = 2.0 * kLooseOverlap;
+  return law;
+}
+
+// Raises k_N of the settling law from `stiffness` (the law whose overlaps under full gravity the
+// bed has) to the stage's `stageStiffness`, keeping the contact forces (kStiffening).
+ParticleSet stiffen(ParticleSet s, double stiffness, double stageStiffness,
+                    const GranularBedParams& p, const Container& filled, GranularBedReport& report,
+                    const ProgressCallback& progress) {
+  const double g = p.settlingGravity;
+  const double lightest = *std::min_element(s.mass.begin(), s.mass.end());
+  const int runs = static_cast<int>(std::max(
+      0.0, std::ceil(std::log(stageStiffness / stiffness) / std::log(kStiffening) - 1e-9)));
+  for (int run = 0; run < runs; ++run) {
+    const double next = std::min(stiffness * kStiffening, stageStiffness);
+    DemSolver solver(s, restParams(settlingParams(p, filled), stiffness, lightest, filled));
+    const long long ramp = std::llround(kStiffeningCollisions * kRestStepsPerCollision);
+    for (long long i = 1; i <= ramp; ++i) {
+      solver.setGravity(Gravity::downward(g * std::pow(stiffness / next, double(i) / ramp)));
+      solver.step();
+    }
+    solver.advanceSteps(std::llround(kHoldCollisions * kRestStepsPerCollision));
+    reportProgress(progress, static_cast<double>(run + 1) / runs);
+    report.settlingTime += solver.time();
+    report.settlingSteps += solver.stepCount();
+    s = atRest(solver.particles());
+    stiffness = next;
+  }
+  return s;
+}
+
+// Brings the bed, whose overlaps are the stage law's under full gravity, to rest under full
+// gravity in the DEM stage's own contact law (stageParams; strong damping and a longer step are
+// numerical aids), so that its overlaps carry its weight as the stage's contacts will. Returns
+// the bed at rest, ordered by Id.
+ParticleSet restInStageLaw(const ParticleSet& bed, const DemParams& stage,
+                           const GranularBedParams& p, GranularBedReport& report,
+                           const ProgressCallback& progress) {
+  const double lightest = *std::min_element(bed.mass.begin(), bed.mass.end());
+  double meanRadius = 0.0;
+  for (double r : bed.radius)
+    meanRadius += r / static_cast<double>(bed.size());
+  const double speedScale = std::sqrt(p.settlingGravity * meanRadius);
+  DemSolver solver(bed, restParams(stage, stage.contact.kN, lightest, p.container));
+  const long long chunk = std::llround(kRestChunk * kRestStepsPerCollision);
+  const long long minSteps = std::llround(kRestMin * kRestStepsPerCollision);
+  const long long maxSteps = std::llround(kRestMax * kRestStepsPerCollision);
+  double speed = 0.0;
+  while (solver.stepCount() < maxSteps) {
+    solver.advanceSteps(std::min(chunk, maxSteps - solver.stepCount()));
+    reportProgress(progress, static_cast<double>(solver.stepCount()) / maxSteps);
+    speed = solver.diagnostics().maxSpeed;
+    if (solver.stepCount() >= minSteps && speed < kRestSpeed * speedScale) {
+      report.atRest = true;
+      break;
+    }
+  }
+  report.restTime = solver.time();
+  report.restSteps = solver.stepCount();
+  report.restSpeed = speed / speedScale;
+  // The solver orders the particles along a curve; give them back in the order of their ids
+  // (0..n-1 after trimming).
+  const ParticleSet& s = solver.particles();
+  std::vector<std::size_t> byId(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i)
+    byId[static_cast<std::size_t>(s.id[i])] = i;
+  ParticleSet out;
+  out.reserve(s.size());
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const std::size_t i = byId[j];
+    out.add(&s.position[3 * i], s.radius[i], s.density[i], s.material[i], s.id[i]);
+    out.mass.back() = s.mass[i];
+  }
+  return out;
+}
+
 } // namespace
 
 ParticleSet settledRandomBed(const GranularBedParams& p, GranularBedReport& report,
@@ -169,18 +309,27 @@ ParticleSet settledRandomBed(const GranularBedParams& p, GranularBedReport& repo
       randomFill(p, {filled, 2 * p.maxParticles, kLooseOverlap, kLooseGrowthSweeps}, report,
                  subRange(progress, 0.0, 0.2));
   auto clock = std::chrono::steady_clock::now();
-  ParticleSet settled = settleBed(loose, p, filled, report, subRange(progress, 0.2, 0.95));
+  const ParticleSet settled = settleBed(loose, p, filled, report, subRange(progress, 0.2, 0.75));
   endStage(report, "settling", clock);
-  ParticleSet trimmed = trimToSurface(settled, p.container.surfaceHeight);
+  // The unloaded bed has the overlaps of a law 1 / kUnloadGravity times stiffer than the soft
+  // one under full gravity; stiffen it to the stage's law (the whole fill: the overlaps that
+  // stiffening takes out lift the bed a little), trim it, and bring it to rest in that law.
+  const ParticleSet stiff =
+      stiffen(settled, settlingParams(p, filled).contact.kN / kUnloadGravity,
+              trimmedStageStiffness(settled, p), p, filled, report, subRange(progress, 0.75, 0.85));
+  endStage(report, "stiffening", clock);
+  const ParticleSet trimmed = trimToSurface(stiff, p.container.surfaceHeight);
   if (static_cast<std::int64_t>(trimmed.size()) > p.maxParticles)
     checkCap(static_cast<double>(trimmed.size()), p.maxParticles);
   endStage(report, "trim", clock);
-  // Unloading leaves contacts overlapping by well under 1 % of a radius; remove those so the
-  // bed is stress-free under any gravity and stiffness it is used with later.
-  report.finalRelaxationIterations =
-      removeOverlaps(trimmed, p, p.container, subRange(progress, 0.95, 1.0));
-  endStage(report, "final relaxation", clock);
-  return trimmed;
+  if (trimmed.size() == 0)
+    return trimmed;
+  const DemParams stage = stageParams(trimmed, p);
+  report.stageStiffness = stage.contact.kN;
+  report.stageTimeStep = stage.dt;
+  ParticleSet rested = restInStageLaw(trimmed, stage, p, report, subRange(progress, 0.85, 1.0));
+  endStage(report, "rest", clock);
+  return rested;
 }
 
 } // namespace craterkit

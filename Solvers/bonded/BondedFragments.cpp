@@ -125,6 +125,8 @@ void measureCloud(const std::vector<double>& x, const std::vector<double>& v,
   const double qHi = 0.5 * (1.0 + p.massFraction), qLo = 0.5 * (1.0 - p.massFraction);
   std::tie(out.rearEdge, out.leadingEdge) = massQuantiles(axial, qLo, qHi);
   out.axialLength = out.leadingEdge - out.rearEdge;
+  const auto [front90, front99] = massQuantiles(axial, 0.90, 0.99);
+  out.frontWidth = front99 - front90;
   const auto [sideLo, sideHi] = massQuantiles(side, qLo, qHi);
   out.radialExtent = sideHi - sideLo;
   out.ratio = out.radialExtent > 0.0 ? out.axialLength / out.radialExtent : 0.0;

@@ -22,7 +22,10 @@
 //   L_r = Q_u(q+) − Q_u(q−), u the transverse coordinates (x − origin)·e1 and ·e2 of every
 //         particle, each with mass m_i: the width of the cloud's silhouette seen from the side
 //         (two perpendicular views pooled), as on the photograph;   R = L_a / L_r;
-//   v_a = Q_{v·e}(q+), the axial velocity of the leading edge of the bulk; v_a / v0.
+//   v_a = Q_{v·e}(q+), the axial velocity of the leading edge of the bulk; v_a / v0;
+//   front width w_f = Q_s(0.99) − Q_s(0.90), the depth of the leading 10 % of the mass less its
+//         last 1 %: a sharp front holds much mass in a thin layer (w_f / L_a small), a diffuse
+//         one spreads it ahead of the bulk (independent of f).
 // Both extents hold the same fraction f of the mass and both are side-view coordinates, so
 // for any cloud whose density is a function of (s/a)² + (ρ/b)² (a filled or hollow spheroid
 // of semi-axes a, b) R → a / b with many particles, whatever f: the coordinates s/a and u/b then
@@ -65,6 +68,7 @@ struct BondedFragmentResult {
   double leadingEdge = 0.0, rearEdge = 0.0;                  // s_f, s_b along the axis
   double axialLength = 0.0, radialExtent = 0.0, ratio = 0.0; // L_a, L_r, R
   double axialVelocity = 0.0, axialVelocityRatio = 0.0;      // v_a, v_a / v0
+  double frontWidth = 0.0;                                   // w_f = Q_s(0.99) − Q_s(0.90)
 };
 
 // positions/velocities: 3n; bondBroken: per bond, non-zero when broken (may be empty: none).

@@ -27,7 +27,9 @@ BondedArrays bondedArrays(const BondedSolver& solver, const BondedFragmentResult
   a.density.resize(n);
   a.id.resize(n);
   a.fragmentId.resize(n);
+  a.internalEnergy.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
+    a.internalEnergy[i] = solver.internalEnergy()[i] / sys.masses[i];
     a.density[i] = sys.body[i] == 0 ? projectileDensity : plateDensity;
     a.id[i] = static_cast<std::int64_t>(i);
     a.fragmentId[i] = static_cast<int>(frag.fragmentId[i]);
@@ -52,6 +54,8 @@ std::vector<NamedValue> bondedFields(const BondedSolver& solver, const BondedFra
           NamedValue::number("RepulsiveEnergy", e.repulsive),
           NamedValue::number("BondEnergy", e.bond),
           NamedValue::number("DissipatedEnergy", e.dissipated),
+          NamedValue::number("InternalEnergyTotal", e.internal),
+          NamedValue::string("Dissipation", dissipationName(solver.params().dissipation)),
           NamedValue::number("TotalEnergy", e.total()),
           NamedValue::number("Fragmentation", f.fragmentation),
           NamedValue::number("Fragments", count(f.fragmentSize.size())),
@@ -66,6 +70,9 @@ std::vector<NamedValue> bondedFields(const BondedSolver& solver, const BondedFra
           NamedValue::number("DebrisCloudAxialLength", f.axialLength),
           NamedValue::number("DebrisCloudRadialExtent", f.radialExtent),
           NamedValue::number("DebrisCloudRatio", f.ratio),
+          NamedValue::number("DebrisCloudFrontWidth", f.frontWidth),
+          NamedValue::number("DebrisCloudFrontSharpness",
+                             f.axialLength > 0.0 ? f.frontWidth / f.axialLength : 0.0),
           NamedValue::number("AxialVelocity", f.axialVelocity),
           NamedValue::number("AxialVelocityRatio", f.axialVelocityRatio),
           NamedValue::number("ImpactSpeed", sys.impactSpeed),

@@ -1,8 +1,8 @@
 // What a BondedImpact run reports at an output time: the debris-cloud analysis of the current
 // state (BondedFragments, the paper's Section 3 measures), the per-particle arrays the data
-// model names (Radius, Density, Material, Id, BondCount, FragmentId) and the field data list
-// (clock, broken bonds, energies, F, the cloud's edges, L_a, L_r, R, v_a / v0, set-up
-// figures).
+// model names (Radius, Density, Material, Id, BondCount, FragmentId) with the shock heating's
+// InternalEnergy, and the field data list (clock, broken bonds, energies, F, the cloud's edges,
+// L_a, L_r, R, v_a / v0, set-up figures).
 #pragma once
 
 #include "bonded/BondedFragments.h"
@@ -25,6 +25,7 @@ struct BondedArrays {
   std::vector<std::int64_t> id;
   std::vector<int> bondCount; // intact bonds
   std::vector<int> fragmentId;
+  std::vector<double> internalEnergy; // J/kg: the shock heating's (0 without it)
 };
 BondedArrays bondedArrays(const BondedSolver& solver, const BondedFragmentResult& fragments,
                           double projectileDensity, double plateDensity);

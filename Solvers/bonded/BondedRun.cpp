@@ -1,9 +1,11 @@
 #include "bonded/BondedRun.h"
 
+#include "bonded/ShockViscosity.h"
 #include "common/Error.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace craterkit {
 
@@ -66,15 +68,33 @@ const BondedSolver& BondedRun::advanceTo(double time, const ProgressCallback& pr
 }
 
 void BondedRun::resumeFrom(const std::string& checkpointPath) {
-  auto solver = std::make_unique<BondedSolver>(BondedSolver::readCheckpoint(checkpointPath));
-  if (solver->system().size() != initial_.size() ||
-      solver->system().bonds.size() != initial_.bonds.size())
-    throw InputError(
-        checkpointPath + ": the bonded checkpoint has " + std::to_string(solver->system().size()) +
-        " particles and " + std::to_string(solver->system().bonds.size()) + " bonds, this set-up " +
-        std::to_string(initial_.size()) + " and " + std::to_string(initial_.bonds.size()));
-  const long long step = static_cast<long long>(solver->stepCount());
-  resumed(std::move(solver), step);
+  try {
+    auto solver = std::make_unique<BondedSolver>(BondedSolver::readCheckpoint(checkpointPath));
+    if (solver->system().size() != initial_.size() ||
+        solver->system().bonds.size() != initial_.bonds.size())
+      throw InputError(checkpointPath + ": the bonded checkpoint has " +
+                       std::to_string(solver->system().size()) + " particles and " +
+                       std::to_string(solver->system().bonds.size()) + " bonds, this set-up " +
+                       std::to_string(initial_.size()) + " and " +
+                       std::to_string(initial_.bonds.size()));
+    const BondedSolverParams& saved = solver->params();
+    if (saved.dissipation != params_.dissipation ||
+        (params_.dissipation != BondedDissipation::None &&
+         (saved.shockViscosityLinear != params_.shockViscosityLinear ||
+          saved.shockViscosityQuadratic != params_.shockViscosityQuadratic ||
+          saved.shockViscosityThreshold != params_.shockViscosityThreshold)))
+      throw InputError(checkpointPath + ": the bonded checkpoint was written with Dissipation " +
+                       dissipationName(saved.dissipation) +
+                       " and its coefficients; this run asks for " +
+                       dissipationName(params_.dissipation) +
+                       " or other coefficients: resume with the same, or start afresh");
+    const long long step = static_cast<long long>(solver->stepCount());
+    resumed(std::move(solver), step);
+  } catch (...) {
+    // The file could not be resumed from: never overwrite it (no checkpoint is ever ahead).
+    checkpointReached(std::numeric_limits<long long>::max());
+    throw;
+  }
 }
 
 } // namespace craterkit

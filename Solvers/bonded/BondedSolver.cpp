@@ -2,14 +2,11 @@
 
 #include "bonded/BondedForces.h"
 
-#include "common/AtomicWrite.h"
 #include "common/CellList.h"
 #include "common/Error.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <utility>
@@ -58,27 +55,6 @@ using bondedpass::kBreakingOffset;
 using bondedpass::kNoBond;
 using bondedpass::kNoBondOffset;
 
-constexpr char kMagic[8] = {'C', 'K', 'B', 'O', 'N', 'D', '0', '1'};
-
-template <class T> void put(std::ostream& out, const T& v) {
-  out.write(reinterpret_cast<const char*>(&v), sizeof(T));
-}
-template <class T> void putVector(std::ostream& out, const std::vector<T>& v) {
-  out.write(reinterpret_cast<const char*>(v.data()),
-            static_cast<std::streamsize>(v.size() * sizeof(T)));
-}
-template <class T> void get(std::istream& in, T& v) {
-  in.read(reinterpret_cast<char*>(&v), sizeof(T));
-  if (!in)
-    throw InputError("bonded checkpoint: file truncated or not a bonded checkpoint");
-}
-template <class T> void getVector(std::istream& in, std::vector<T>& v, std::size_t n) {
-  v.resize(n);
-  in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
-  if (!in)
-    throw InputError("bonded checkpoint: file truncated or not a bonded checkpoint");
-}
-
 } // namespace
 
 void BondedSolverParams::validate() const {
@@ -88,6 +64,9 @@ void BondedSolverParams::validate() const {
     throw InputError("BondedSolver: TimeStepFraction must lie in (0, 0.1) of the bond period");
   if (!(skin > 0.0 && skin < 10.0))
     throw InputError("BondedSolver: Skin must lie in (0, 10) sigma");
+  if (dissipation != BondedDissipation::None && dissipation != BondedDissipation::ShockViscosity)
+    throw InputError("BondedSolver: Dissipation must be None (0) or ShockViscosity (1)");
+  shockViscosity().validate(); // refused by name even where Dissipation is None
 }
 
 BondedSolver::BondedSolver(BondedSystem system, const BondedSolverParams& params)
@@ -112,6 +91,12 @@ BondedSolver::BondedSolver(BondedSystem system, const BondedSolverParams& params
 // Bond adjacency (each particle's bonds in index order) and the pair lists.
 void BondedSolver::prepare() {
   const std::size_t n = sys_.size();
+  if (internal_.size() != n)
+    internal_.assign(n, 0.0);
+  viscosity_.reset();
+  if (params_.dissipation == BondedDissipation::ShockViscosity)
+    viscosity_.emplace(params_.shockViscosity(), sys_.law,
+                       *std::min_element(sys_.masses.begin(), sys_.masses.end()), dt_);
   for (const BondedBond& b : sys_.bonds)
     if (b.i >= n || b.j >= n || b.i == b.j)
       throw InputError("BondedSolver: a bond names a particle that does not exist");
@@ -392,8 +377,21 @@ void BondedSolver::stepDeferred(bool driftNext) {
   // (BondedListTrigger): the cloud's fastest fragments no longer set every particle's bound.
   if (trigger_.expired(sys_.positions.data(), dt_ * spread.relativeSpeed()))
     buildPairs();
-  computeForces(true, driftNext);
+  // A pulse of the shock heating ends every interval-th step, on the whole state (without it,
+  // as before: the paper's model runs the same operations).
+  const bool pulse = viscosity_ && (step_ + 1) % viscosity_->interval() == 0;
+  computeForces(true, driftNext && !pulse);
   ++step_;
+  if (pulse)
+    dissipate();
+}
+
+void BondedSolver::dissipate() {
+  settle();
+  pulseScratch_.resize(4 * sys_.size());
+  viscosity_->pulse({sys_.size(), blockStart_.data(), partner_.data()}, sys_.positions.data(),
+                    sys_.velocities.data(), sys_.masses.data(), internal_.data(),
+                    pulseScratch_.data());
 }
 
 // The (pending and) first half kick and the drift; returns the velocities' spread after it.
@@ -496,6 +494,8 @@ BondedEnergies BondedSolver::energies() const {
     return ws2017::bondSpring(std::sqrt(dx * dx + dy * dy + dz * dz), bond.rest, law.kappa, unused);
   });
   e.dissipated = dissipated_;
+  if (viscosity_)
+    e.internal = chunkedSum(internal_.size(), [&](std::size_t i) { return internal_[i]; });
   return e;
 }
 
@@ -505,73 +505,6 @@ std::array<double, 3> BondedSolver::momentum() const {
     p[k] = chunkedSum(sys_.size(),
                       [&](std::size_t i) { return sys_.masses[i] * sys_.velocities[3 * i + k]; });
   return p;
-}
-
-void BondedSolver::writeCheckpoint(const std::string& path) const {
-  writeFileAtomically(path, "the bonded checkpoint", [&](std::ostream& out) {
-    out.write(kMagic, sizeof kMagic);
-    put(out, static_cast<std::uint64_t>(sys_.size()));
-    put(out, static_cast<std::uint64_t>(sys_.bonds.size()));
-    put(out, sys_.law);
-    put(out, sys_.axis);
-    put(out, sys_.rearFace);
-    put(out, sys_.impactSpeed);
-    put(out, params_);
-    put(out, dt_);
-    put(out, step_);
-    put(out, static_cast<std::uint64_t>(broken_));
-    put(out, dissipated_);
-    putVector(out, sys_.positions);
-    putVector(out, sys_.velocities);
-    putVector(out, force_);
-    putVector(out, sys_.masses);
-    putVector(out, sys_.body);
-    putVector(out, sys_.bonds);
-    putVector(out, bondBroken_);
-  });
-}
-
-BondedSolver BondedSolver::readCheckpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw InputError("bonded checkpoint: cannot open '" + path + "'");
-  char magic[sizeof kMagic];
-  in.read(magic, sizeof magic);
-  if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
-    throw InputError("bonded checkpoint: '" + path + "' is not a bonded checkpoint");
-  BondedSolver s;
-  std::uint64_t n = 0, nb = 0, broken = 0;
-  get(in, n);
-  get(in, nb);
-  if (n == 0 || n >= (1ULL << 32) || nb > 64 * n)
-    throw InputError("bonded checkpoint: '" + path + "' has implausible sizes");
-  checkBondedMemory(static_cast<double>(n), 0.0, "the bonded checkpoint");
-  get(in, s.sys_.law);
-  get(in, s.sys_.axis);
-  get(in, s.sys_.rearFace);
-  get(in, s.sys_.impactSpeed);
-  get(in, s.params_);
-  get(in, s.dt_);
-  get(in, s.step_);
-  get(in, broken);
-  get(in, s.dissipated_);
-  s.broken_ = static_cast<std::size_t>(broken);
-  getVector(in, s.sys_.positions, 3 * n);
-  getVector(in, s.sys_.velocities, 3 * n);
-  getVector(in, s.force_, 3 * n);
-  getVector(in, s.sys_.masses, n);
-  getVector(in, s.sys_.body, n);
-  getVector(in, s.sys_.bonds, nb);
-  getVector(in, s.bondBroken_, nb);
-  s.params_.validate();
-  const ws2017::Law& law = s.sys_.law;
-  if (!(law.sigma > 0.0 && law.epsilon > 0.0 && law.kappa > 0.0 && law.rCut > law.rEq()) ||
-      !std::all_of(s.sys_.masses.begin(), s.sys_.masses.end(), [](double m) { return m > 0.0; }))
-    throw InputError("bonded checkpoint: '" + path + "' has an invalid law or masses");
-  if (!(s.dt_ > 0.0))
-    throw InputError("bonded checkpoint: '" + path + "' has no valid time step");
-  s.prepare(); // forces are the stored ones: the run continues bit for bit
-  return s;
 }
 
 } // namespace craterkit

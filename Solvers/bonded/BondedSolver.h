@@ -1,9 +1,12 @@
 // Time integration of the bonded-particle model of Watson & Steinhauser 2017 (Materials 10:379,
 // seed 003, Eq. 1 with the potentials of Eqs. 3–4; see WatsonSteinhauser2017.h).
 //
-// Velocity Verlet with a constant Δt, no friction, no damping. Δt is a fixed fraction of the
-// bond period 2π√(m/κ); the default fraction gives the paper's 1e-10 s at its headline size
-// and, since m ∝ σ³ and κ ∝ σ, scales with σ like every other time of the sized model.
+// Velocity Verlet with a constant Δt, no friction, no damping (Dissipation None, the paper's
+// model; ShockViscosity adds a pair viscosity in fast compression as a pulse every few whole
+// steps, keeping the energy it takes as internal energy: ShockViscosity.h). Δt is a fixed
+// fraction of the bond period 2π√(m/κ); the default fraction gives the paper's 1e-10 s at its
+// headline size and, since m ∝ σ³ and κ ∝ σ, scales with σ like every other time of the sized
+// model.
 //
 // Every pair of particles is handled in one fused pass per particle over its pair list: the
 // particles it may touch before the next rebuild (a full Verlet list: all particles within
@@ -46,12 +49,14 @@
 #include "bonded/BondedBody.h"
 #include "bonded/BondedForces.h"
 #include "bonded/BondedListTrigger.h"
+#include "bonded/ShockViscosity.h"
 #include "common/CellList.h"
 #include "common/Progress.h"
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -62,13 +67,23 @@ struct BondedSolverParams {
   double timeStep = 0.0;                                         // s; 0: fraction × period
   double timeStepFraction = ws2017::referenceTimeStepFraction(); // of the bond period
   double skin = 0.3;                                             // Verlet skin, units of σ
+  // The shock heating beyond the paper (ShockViscosity.h); None: the paper's model, bit for bit.
+  BondedDissipation dissipation = BondedDissipation::None;
+  // Calibrated against aluminium's waste heat (docs/physics.md §5.1).
+  double shockViscosityLinear = 0.0;      // C_L
+  double shockViscosityQuadratic = 0.05;  // C_Q
+  double shockViscosityThreshold = 500.0; // w_th, m/s
+  ShockViscosityParams shockViscosity() const {
+    return {shockViscosityLinear, shockViscosityQuadratic, shockViscosityThreshold};
+  }
   void validate() const;
 };
 
 struct BondedEnergies {
   double kinetic = 0.0, repulsive = 0.0, bond = 0.0;
   double dissipated = 0.0; // spring energy of the bonds at the moment they broke
-  double total() const { return kinetic + repulsive + bond + dissipated; }
+  double internal = 0.0;   // the shock heating's internal energy (0 without it)
+  double total() const { return kinetic + repulsive + bond + dissipated + internal; }
 };
 
 class BondedSolver {
@@ -94,8 +109,13 @@ public:
   // Measurements of the particles' relative motion since construction (BondedListTrigger).
   std::size_t listMeasurements() const { return trigger_.measurements(); }
   const BondedSystem& system() const { return sys_; }
+  const BondedSolverParams& params() const { return params_; }
   const std::vector<std::uint8_t>& bondBroken() const { return bondBroken_; }
   const std::vector<double>& forces() const { return force_; }
+  // Each particle's internal energy in J (the shock heating's; zeros without it).
+  const std::vector<double>& internalEnergy() const { return internal_; }
+  // Steps between the shock heating's pulses (0 without it).
+  std::uint64_t dissipationInterval() const { return viscosity_ ? viscosity_->interval() : 0; }
   // Whether the pair lists hold the rest lengths as 4-byte offsets from r_eq (else as doubles).
   bool compactLists() const { return compact_; }
   // Runs the generic passes even where the AVX-512 ones could (both give the same bits there).
@@ -104,9 +124,14 @@ public:
   // the same bits there); between steps.
   void useWideLists();
 
-  // Whole state, through writeFileAtomically; readCheckpoint gives a bit-identical run.
+  // Whole state, through writeFileAtomically; readCheckpoint gives a bit-identical run (format
+  // and code: bonded/BondedCheckpoint.h, .cpp). A damaged file throws InputError naming it
+  // ("PATH: the checkpoint is corrupt (checksum mismatch)"); an old one without a checksum reads
+  // with a warning in warnings().
   void writeCheckpoint(const std::string& path) const;
   static BondedSolver readCheckpoint(const std::string& path);
+  // Warnings about this run's state, each a sentence (an old checkpoint it was read from).
+  const std::vector<std::string>& warnings() const { return warnings_; }
 
 private:
   BondedSolver() = default;
@@ -122,7 +147,8 @@ private:
   // whole until the next step).
   void stepDeferred(bool driftNext);
   bondedpass::VelocitySpread kickDrift();
-  void settle(); // the pending half kick, if any: every public call ends with none pending
+  void settle();    // the pending half kick, if any: every public call ends with none pending
+  void dissipate(); // a pulse of the shock heating, on a whole state
 
   BondedSystem sys_;
   BondedSolverParams params_;
@@ -131,6 +157,11 @@ private:
   std::size_t broken_ = 0;
   std::size_t builds_ = 0;
   double dissipated_ = 0.0;
+  // The shock heating (none for the paper's model), each particle's internal energy (J) and
+  // the pulses' scratch (4 doubles a particle).
+  std::optional<ShockViscosity> viscosity_;
+  std::vector<double> internal_;
+  std::vector<double> pulseScratch_;
   std::vector<double> force_;
   BondedListTrigger trigger_; // when the lists must be rebuilt
   bool kickPending_ = false;
@@ -163,6 +194,7 @@ private:
   std::vector<std::uint32_t> cellId_;         // and the particles' indices
   std::vector<std::vector<std::pair<std::uint32_t, double>>> staged_;
   std::vector<std::uint32_t> listed_;
+  std::vector<std::string> warnings_;
 };
 
 } // namespace craterkit

@@ -1,6 +1,7 @@
 #include "dem/DemCheckpoint.h"
 
 #include "common/AtomicWrite.h"
+#include "common/CheckpointFormat.h"
 #include "common/Error.h"
 #include "dem/PairList.h"
 
@@ -10,11 +11,13 @@
 
 namespace craterkit {
 
-// Checkpoints: a versioned little-endian binary file. Every count is checked against the
-// bytes left in the file before anything is allocated.
+// Checkpoints: the payload of dem/DemCheckpoint.h in the frame of common/CheckpointFormat.h.
+// Every count is checked against the bytes left in the payload before anything is allocated.
 namespace {
 
+// The payload's magic, which a version-1 file (the payload alone) begins with.
 constexpr char kMagic[8] = {'C', 'K', 'D', 'E', 'M', 'C', 'P', '1'};
+const CheckpointKind kDem{"DEM", "DEM checkpoint", {'C', 'K', 'D', 'E', 'M', 'C', 'P', '1'}};
 
 struct Writer {
   std::ostream& out;
@@ -79,7 +82,11 @@ struct Reader {
 
 } // namespace
 
-void DemSolver::writeCheckpoint(std::ostream& out) const {
+void DemSolver::writeCheckpoint(std::ostream& framed) const {
+  writeCheckpointFrame(framed, kDem, [this](std::ostream& out) { writeCheckpointPayload(out); });
+}
+
+void DemSolver::writeCheckpointPayload(std::ostream& out) const {
   Writer w{out};
   out.write(kMagic, sizeof(kMagic));
   w.pod<std::uint32_t>(1u); // endianness probe
@@ -152,6 +159,14 @@ void DemSolver::writeCheckpoint(const std::string& path) const {
 }
 
 DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t available) {
+  return readCheckpoint(in, available, std::string());
+}
+
+DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t framed,
+                                    const std::string& source) {
+  // The frame and the payload's checksum first, then the payload (all of it, for version 1).
+  const CheckpointFrame frame = readCheckpointFrame(in, framed, kDem);
+  const std::uint64_t available = frame.payloadBytes;
   Reader r{in, available};
   char magic[8];
   r.need(sizeof(magic), "magic");
@@ -230,6 +245,8 @@ DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t available) {
   solver.acc_ = std::move(acc);
   solver.alpha_ = std::move(alpha);
   solver.overlapWarningSteps_ = warnings;
+  if (!frame.warning.empty())
+    solver.warn(source.empty() ? frame.warning : source + ": " + frame.warning);
   // The wall histories of the walls each particle can reach (a wall it touches is one).
   WallContacts& wc = solver.wallContacts_;
   for (std::size_t c = 0; c < wc.size(); ++c) {
@@ -257,11 +274,11 @@ DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t available) {
 DemSolver DemSolver::readCheckpoint(const std::string& path) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in)
-    throw InputError("cannot open checkpoint file " + path);
+    throw InputError(path + ": cannot open the DEM checkpoint");
   const auto size = static_cast<std::uint64_t>(in.tellg());
   in.seekg(0);
   try {
-    return readCheckpoint(in, size);
+    return readCheckpoint(in, size, path);
   } catch (const InputError& e) {
     throw InputError(path + ": " + e.what());
   }
@@ -270,7 +287,8 @@ DemSolver DemSolver::readCheckpoint(const std::string& path) {
 DemCheckpointState readDemCheckpointState(const std::string& path) {
   // Read as a restart reads it, so that a file a run would refuse is refused here too.
   const DemSolver solver = DemSolver::readCheckpoint(path);
-  return DemCheckpointState{solver.particles(), solver.time(), solver.stepCount()};
+  return DemCheckpointState{solver.particles(), solver.time(), solver.stepCount(),
+                            solver.warnings()};
 }
 
 } // namespace craterkit

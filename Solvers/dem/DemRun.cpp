@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace craterkit {
@@ -58,7 +59,14 @@ const DemSolver& DemRun::advanceTo(double time, const ProgressCallback& progress
 }
 
 void DemRun::resumeFrom(const std::string& checkpointPath) {
-  auto solver = std::make_unique<DemSolver>(DemSolver::readCheckpoint(checkpointPath));
+  std::unique_ptr<DemSolver> solver;
+  try {
+    solver = std::make_unique<DemSolver>(DemSolver::readCheckpoint(checkpointPath));
+  } catch (...) {
+    // The file could not be resumed from: never overwrite it (no checkpoint is ever ahead).
+    checkpointReached(std::numeric_limits<long long>::max());
+    throw;
+  }
   const long long step = solver->stepCount();
   resumed(std::move(solver), step);
   params_ = solver_->params();

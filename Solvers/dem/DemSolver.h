@@ -112,8 +112,11 @@ public:
   // order and the contact histories of the others. Returns how many were removed.
   std::size_t removeParticles(const std::vector<char>& remove);
 
-  // Checkpoints (format and checks in dem/DemCheckpoint.h, code in DemCheckpoint.cpp). The
-  // file is written through writeFileAtomically: a failed or aborted write keeps the last one.
+  // Checkpoints (format and checks in dem/DemCheckpoint.h and common/CheckpointFormat.h, code
+  // in DemCheckpoint.cpp). The file is written through writeFileAtomically: a failed or
+  // aborted write keeps the last one. A damaged file throws InputError ("the checkpoint is
+  // corrupt (checksum mismatch)"; with the path from the path overload); an old one without a
+  // checksum reads with a warning in warnings().
   void writeCheckpoint(std::ostream& out) const;
   void writeCheckpoint(const std::string& path) const;
   static DemSolver readCheckpoint(std::istream& in, std::uint64_t available);
@@ -121,6 +124,11 @@ public:
 
 private:
   struct Restore {};
+  // The checkpoint's payload (dem/DemCheckpoint.h), and the reader of a framed checkpoint
+  // whose warnings name SOURCE (the file, or empty).
+  void writeCheckpointPayload(std::ostream& out) const;
+  static DemSolver readCheckpoint(std::istream& in, std::uint64_t framed,
+                                  const std::string& source);
   DemSolver(Restore, const ParticleSet& particles, const DemParams& params);
   void initialise(bool computeInitialForces);
   void checkInput() const;

@@ -5,8 +5,9 @@ Two beds of about N monodisperse grains: the DEM bed-impact benchmark's box bed 
 2000 kg/m^3, settled at 9.81 m/s^2; benchmarks/dem_bed_impact) and the SCI example's bowl bed
 (bowl radius 1.05 m, grain density 1190/0.6 kg/m^3, settled at 1000 m/s^2; examples/sci_crater.py).
 For each: the seconds of every stage (placement, relaxation of the loose placement, settling,
-trim, final relaxation), the settling steps, the bulk packing fraction (0.58-0.64 for RCP),
-the smallest gap over all pairs (no overlaps: >= 0), and whether the bed is at rest: released
+trim, stiffening to the DEM stage's law, rest in it), the settling steps, the bulk packing
+fraction (0.58-0.64 for RCP), the coordination number, the smallest gap over all pairs (the
+largest overlap, negative: the contacts carry the bed's weight), and whether the bed is at rest: released
 under the impact's gravity, stiffness and contact law for --rest-steps DEM steps, its largest
 displacement (in radii) and kinetic energy per grain (in m g r).
 
@@ -45,7 +46,8 @@ def main():
             r = json.loads(out.strip().splitlines()[-1])
             stages = ", ".join(f"{k[:-2]} {v:.1f} s" for k, v in r.items() if k.endswith("_s"))
             log(f"  {r['particles']} grains, {r['seconds']:.1f} s ({stages}); {r['settling_steps']} "
-                f"settling steps, packing fraction {r['packing_fraction']:.4f}, smallest gap "
+                f"settling steps, {r['bed_rest_steps']} rest steps, packing fraction "
+                f"{r['packing_fraction']:.4f}, coordination number {r['coordination_number']:.2f}, smallest gap "
                 f"{r['smallest_gap_r']:.3g} r; after {r['rest_steps']} steps released: largest "
                 f"displacement {r['rest_max_displacement_r']:.3g} r, kinetic energy "
                 f"{r['rest_kinetic_energy_mgr']:.3g} m g r per grain; process {wall:.1f} s")

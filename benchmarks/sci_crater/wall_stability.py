@@ -19,6 +19,11 @@ of them.
 
     scripts/pvbatch benchmarks/sci_crater/wall_stability.py --slopes 30 35 40 45
     scripts/pvbatch benchmarks/sci_crater/wall_stability.py --slopes 35 40 --rolling-friction 0
+    scripts/pvbatch benchmarks/sci_crater/wall_stability.py --slopes 35 40 --packing Loose --particles 6000
+
+The bed rests in the pits' own contact law (GranularBed's DEMMaxExpectedSpeed is
+--max-expected-speed). --packing Loose makes GranularBed's loose bed, its grain density
+rho_bulk / LOOSE_FRACTION.
 
 Writes OUTPUT_DIR/wall_stability.json (one record per pit and time, rewritten after each) and a
 cross-section of each pit at its last time (pitSLOPE.png). --resume keeps the pits the file
@@ -43,6 +48,10 @@ from craterkit.cross_section import crater_measures, render_cross_section
 # The speed the SCI crater's DEM stage at Ryugu's gravity sets its contacts for: 1.5 times the
 # fastest grain after the hand-off (report.json's dem_max_expected_speed_m_s).
 CRATER_STAGE_SPEED = 0.0663
+# The loose bed's nominal packing fraction (the grain density is rho_bulk over it), used where
+# craterkit.sci has no entry for it: GranularBed's Loose box bed measured 0.5788
+# (BedAtRest.LooseBedIsLooserAndCarriesItsWeight).
+LOOSE_FRACTION = 0.58
 
 
 def parse_args(argv):
@@ -52,6 +61,7 @@ def parse_args(argv):
     p.add_argument("--pit-diameter", type=float, default=13.8, help="m at the surface (the suite's crater: 13.8 m)")
     p.add_argument("--particles", type=int, default=30000, help="bed grains requested (the suite's 30,000)")
     p.add_argument("--gravity", type=float, default=1.5e-4, help="m/s^2")
+    p.add_argument("--packing", choices=["RCP", "Loose"], default="RCP", help="the bed's GranularBed Packing")
     p.add_argument("--settling-friction", type=float, default=0.1,
                    help="the bed's friction while it settles (GranularBed's SettlingFriction)")
     p.add_argument("--static-friction", type=float, default=0.6, help="the DEM's sliding friction")
@@ -93,17 +103,20 @@ class SciBed:
             print(f"error: --pit-diameter {args.pit_diameter:g} m does not fit the bowl ({2 * self.bowl:.3g} m across)",
                   file=sys.stderr)
             raise SystemExit(2)
-        self.grain = self.sc.grain_radius(args.particles, "RCP")
+        sci.PACKING_FRACTION.setdefault("Loose", LOOSE_FRACTION)
+        self.grain = self.sc.grain_radius(args.particles, args.packing)
 
     def build(self, simple, args):
         print(f"D_pi {self.d_pi:.3g} m, sqrt(D_pi/g) {self.t_scale:.3g} s; bowl radius {self.bowl:.3g} m, grain "
               f"radius {self.grain:.3g} m, pit diameter {args.pit_diameter:.3g} m "
               f"({args.pit_diameter / (2 * self.grain):.0f} grain diameters)", flush=True)
         start = time.time()
-        _, self.data, self.surface, _ = sci.bed_stage(simple, self.sc, "RCP", args.particles, heading="",
-                                                      SettlingFriction=args.settling_friction)
+        _, self.data, self.surface, _ = sci.bed_stage(simple, self.sc, args.packing, args.particles, heading="",
+                                                      SettlingFriction=args.settling_friction,
+                                                      DEMMaxExpectedSpeed=args.max_expected_speed)
         self.packing = field_value(self.data, "BulkPackingFraction")
-        print(f"bed: {self.data.GetNumberOfPoints()} grains, packing fraction {self.packing:.3f}, surface at "
+        print(f"bed: {self.data.GetNumberOfPoints()} {args.packing} grains, packing fraction {self.packing:.3f}, "
+              f"coordination number {field_value(self.data, 'CoordinationNumber'):.2f}, surface at "
               f"{self.surface:.3g} m, {time.time() - start:.0f} s", flush=True)
 
 
@@ -224,6 +237,7 @@ def run_pit(simple, args, bed, slope):
                             kinetic_energy_per_mgr=kinetic_energy_per_mgr(data, args.gravity, bed.grain),
                             cut_depth_m=cut["depth_m"], cut_wall_slope_deg=cut["wall_slope_deg"],
                             grains_removed=removed, grain_radius_m=bed.grain, bed_packing_fraction=bed.packing,
+                            packing=args.packing,
                             settling_friction=args.settling_friction, static_friction=args.static_friction,
                             rolling_friction=args.rolling_friction, max_expected_speed=args.max_expected_speed,
                             particles_requested=args.particles, pit_diameter_m=args.pit_diameter, gravity=args.gravity,
@@ -245,10 +259,11 @@ def main(argv):
     os.makedirs(args.output_dir, exist_ok=True)
     path = os.path.join(args.output_dir, "wall_stability.json")
     records = json.load(open(path)) if args.resume and os.path.isfile(path) else []
-    same = {"settling_friction": args.settling_friction, "static_friction": args.static_friction,
+    same = {"packing": args.packing, "settling_friction": args.settling_friction, "static_friction": args.static_friction,
             "rolling_friction": args.rolling_friction, "max_expected_speed": args.max_expected_speed,
             "particles_requested": args.particles, "pit_diameter_m": args.pit_diameter, "gravity": args.gravity}
-    mine = [all(r.get(k) == v for k, v in same.items()) for r in records]  # this run's set-up
+    # this run's set-up (records from before --packing are of RCP beds)
+    mine = [all(r.get(k, "RCP" if k == "packing" else None) == v for k, v in same.items()) for r in records]
     whole = args.dem_time * (1 - 1e-9)
     done = {r["cut_slope_deg"] for r, m in zip(records, mine) if m and r["time_over_scale"] >= whole}
     # Other set-ups' records stay in the file; this set-up's unfinished pits are run again.

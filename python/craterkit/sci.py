@@ -42,7 +42,7 @@ SCI_IMPACT = {"mass": 2.0, "speed": 2000.0, "impactor": "copper", "target": "reg
               "friction_angle": 30.0}
 
 # The beds' packing fractions, for the grain density that gives the target's bulk density.
-PACKING_FRACTION = {"RCP": 0.60, "HCP": 0.74}
+PACKING_FRACTION = {"RCP": 0.60, "HCP": 0.74, "Loose": 0.58}
 
 # The ejecta speed limit of Zhang et al. at Ryugu (1 m/s, three escape speeds) in units of the
 # crater's own speed scale sqrt(g D); other gravities use the same ratio (Froude scaling).
@@ -202,11 +202,14 @@ def saved_sph_state(simple, args, sc, path):
     return sph, data, saved_time
 
 
-def bed_stage(simple, sc, packing, particles, heading="[2/5] ", **properties):
+def bed_stage(simple, sc, packing, particles, heading="[2/5] ", dem_speed=None, max_overlap=None, **properties):
     """A bed of about PARTICLES grains in the bowl, settled at the run's gravity, its grain density
-    giving the target's bulk density; PROPERTIES are further GranularBed properties. Returns the proxy, its data, the surface the crater is
-    measured against (the settled bed's own top: the mean height of its profile, not the height it
-    was trimmed at, which lies above the tops of most surface grains) and the grain radius."""
+    giving the target's bulk density, and at rest in the DEM stage's contact law (DEM_SPEED and
+    MAX_OVERLAP: that stage's MaxExpectedSpeed and MaxOverlap; None: DEMIntegrator's defaults);
+    PROPERTIES are further GranularBed properties. Returns the proxy, its data, the surface the
+    crater is measured against (the settled bed's own top: the mean height of its profile, not
+    the height it was trimmed at, which lies above the tops of most surface grains) and the grain
+    radius."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
     import numpy as np
     radius = sc.grain_radius(particles, packing)
@@ -216,6 +219,10 @@ def bed_stage(simple, sc, packing, particles, heading="[2/5] ", **properties):
                              ParticleRadius=radius, SurfaceHeight=0.0,
                              ParticleDensity=sc.rho_bulk / PACKING_FRACTION[packing],
                              SettlingGravity=sc.gravity, MaxParticles=max(10 * particles, 100000), **properties)
+    if dem_speed is not None:
+        bed.DEMMaxExpectedSpeed = dem_speed
+    if max_overlap is not None:
+        bed.DEMMaxOverlap = max_overlap
     print_progress(bed, "bed")
     data = fetch_stage(bed, "bed")
     with expected_warnings():  # a flat bed has no crater: CraterProfile would say so

@@ -1,5 +1,7 @@
 """GranularBed through ParaView: arrays and field data of the data model, geometry checked
-against brute-force oracles, bad input reported as an error with an empty output."""
+against brute-force oracles (settled beds touch with overlaps below DEMMaxOverlap, which carry
+their weight; HCP and unsettled beds do not overlap), bad input reported as an error with an
+empty output."""
 
 import sys
 
@@ -12,9 +14,10 @@ from craterkit.testing import Checker, captured_vtk_messages
 simple = load_plugin()
 t = Checker("test_granular_bed")
 
-for packing, container in (("RCP", "Bowl"), ("HCP", "Box"), ("RCP", "Box"), ("HCP", "Bowl")):
+for packing, container, radius in (("RCP", "Bowl", 0.4), ("HCP", "Box", 0.4), ("RCP", "Box", 0.4),
+                                   ("HCP", "Bowl", 0.4), ("Loose", "Box", 0.25)):
     bed = simple.GranularBed(Packing=packing, Container=container, ContainerRadius=4.0,
-                             BoxSize=[5.0, 4.0, 3.0], SurfaceHeight=-0.2, ParticleRadius=0.4,
+                             BoxSize=[5.0, 4.0, 3.0], SurfaceHeight=-0.2, ParticleRadius=radius,
                              ParticleDensity=1800.0, RandomSeed=3)
     data = fetch(bed)
     tag = f"{packing}/{container}"
@@ -35,12 +38,19 @@ for packing, container in (("RCP", "Bowl"), ("HCP", "Box"), ("RCP", "Box"), ("HC
     ids = vtk_to_numpy(pd.GetArray("Id"))
     t.check(len(set(ids.tolist())) == n, f"{tag}: ids not unique")
     t.check(np.allclose(m, 1800.0 * 4.0 / 3.0 * np.pi * r ** 3), f"{tag}: mass != density x volume")
-    # Brute-force overlap oracle.
+    # Brute-force overlap oracle: settled beds (RCP by default, Loose) rest on their contacts,
+    # whose overlaps are below the DEM stage's MaxOverlap (0.01 radii); HCP touches without any.
+    # The loose bed keeps some lateral stress locked in by friction while its contacts stiffen:
+    # overlaps above 0.01 radii in this small box (docs/proxies/GranularBed.md, Limits).
+    settled = packing != "HCP"
+    allowed = (0.02 if packing == "Loose" else 0.01) if settled else 1e-9
     d = np.sqrt(((x[:, None, :] - x[None, :, :]) ** 2).sum(-1)) + np.eye(n) * 1e9
     worst = ((r[:, None] + r[None, :]) - d).max() / r.min()
-    t.check(worst <= 1e-9, f"{tag}: particles overlap by {worst:.3g} radii")
+    t.check(worst <= allowed, f"{tag}: particles overlap by {worst:.3g} radii")
+    if settled:
+        t.check(worst > 0.0, f"{tag}: no two particles touch")
     # Containment.
-    tol = 1e-9
+    tol = allowed * r.max()
     t.check((x[:, 2] + r <= -0.2 + tol).all(), f"{tag}: a particle is above the surface")
     if container == "Bowl":
         t.check((np.linalg.norm(x, axis=1) + r <= 4.0 + tol).all(), f"{tag}: outside the bowl")
@@ -51,6 +61,13 @@ for packing, container in (("RCP", "Bowl"), ("HCP", "Box"), ("RCP", "Box"), ("HC
     t.check(field_value(data, "ContainerType") == container, f"{tag}: field ContainerType")
     t.check(field_value(data, "NumberOfParticles") == n, f"{tag}: field NumberOfParticles")
     t.check(abs(field_value(data, "SurfaceHeight") + 0.2) < 1e-12, f"{tag}: field SurfaceHeight")
+    z = field_value(data, "CoordinationNumber")
+    if settled:
+        t.check(3.0 <= z <= 7.0, f"{tag}: field CoordinationNumber {z}")
+        t.check(field_value(data, "RestNormalStiffness") > 0.0, f"{tag}: field RestNormalStiffness")
+        t.check(field_value(data, "AtRest") in (0.0, 1.0), f"{tag}: field AtRest")
+    else:  # NaN when no grain lies three radii inside the container
+        t.check(np.isnan(z) or 11.5 <= z <= 12.0, f"{tag}: HCP field CoordinationNumber {z} (12 touching neighbours)")
     simple.Delete(bed)
 
 # The bed is reproducible from its seed and changes with it.
@@ -70,6 +87,8 @@ bad_inputs = [
     (dict(ParticleRadius=0.05, MaxParticles=1000), "MaxParticles"),
     (dict(Packing="HCP", SizeDistribution="PowerLaw"), "Monodisperse"),
     (dict(PackingFraction=0.9), "PackingFraction"),
+    (dict(Packing="Loose", PackingFraction=0.9), "PackingFraction"),
+    (dict(DEMMaxOverlap=0.0), "DEMMaxOverlap"),
 ]
 for props, word in bad_inputs:
     with captured_vtk_messages() as log:

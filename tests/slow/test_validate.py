@@ -120,15 +120,22 @@ class RowsThatCanFail(unittest.TestCase):
     def test_hvi_front_velocity_bounded_by_the_impact_speed(self):
         for speeds, ok in (((0.95, 0.9, 0.85, 0.8), True), ((1.12, 0.9, 0.85, 0.8), False)):
             it = iter(speeds)
-            validate.hvi_debris_cloud_run = lambda *a, it=it: {
-                "va_over_v0_measured": next(it), "particles": 1000, "F_measured": 0.5,
-                "largest_cloud_fragment_fraction": 0.3}
-            rows = validate.hvi_front_velocity(self.args)
-            checked = [row.ok for row in rows if row.quantity.startswith("v_a/v0 at t/D = ")]
-            self.assertEqual(checked[0], ok)
-            self.assertTrue(all(checked[1:]))
-            self.assertTrue(all(row.ok is None for row in rows if row.tolerance == "stated"))
 
+            def fake(*a, it=it):
+                va = next(it)
+                one = {"va_over_v0_measured": va, "F_measured": 0.5, "largest_cloud_fragment_fraction": 0.3,
+                       "front_sharpness": 0.15}
+                return {"particles": 1000, "models": {"None": one, "ShockViscosity": dict(one)}}
+
+            validate.hvi_debris_cloud_run = fake
+            rows = validate.hvi_front_velocity(self.args)
+            for model in validate.MODELS:
+                checked = [row.ok for row in rows if row.quantity.startswith("v_a/v0 at t/D = ")
+                           and f", {model} (" in row.quantity]
+                self.assertEqual(len(checked), 4)
+                self.assertEqual(checked[0], ok)
+                self.assertTrue(all(checked[1:]))
+            self.assertTrue(all(row.ok is None for row in rows if row.tolerance == "stated"))
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

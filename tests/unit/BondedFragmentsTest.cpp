@@ -142,3 +142,30 @@ TEST(BondedFragments, CloudLeavesOutPlateMaterialAndRefusesBadFractions) {
     }
   }
 }
+
+// The front width w_f = Q_s(0.99) − Q_s(0.90) on clouds whose quantiles are known exactly:
+// n equal masses at s = k/n (k = 1..n) along the axis, a uniform slab, has Q_s(q) = ⌈q n⌉ / n,
+// so w_f = 0.09 and L_a (f = 0.95) = 0.95 − 0.025 + 1/n. Putting the leading 10 % into a thin
+// sheet (a sharp front, all of it within 0.01 of the slab's end) shrinks w_f to that sheet's
+// depth; spreading it over a tail twice as long widens it: the measure orders the fronts as a
+// photograph would.
+TEST(BondedFragments, FrontWidthIsTheLeadingTenthOfTheMassLessItsLastHundredth) {
+  const std::size_t n = 10000;
+  // The first 90 % uniform on (0, 0.9], the rest uniform on (0.9, 0.9 + depth].
+  auto slab = [&](double frontDepth) {
+    Cloud c;
+    for (std::size_t k = 1; k <= n; ++k) {
+      const double q = static_cast<double>(k) / n;
+      c.add(q <= 0.9 ? q : 0.9 + (q - 0.9) / 0.1 * frontDepth, 0.0, 0.0);
+    }
+    return measure(c, 0.95);
+  };
+  const BondedFragmentResult uniform = slab(0.1), sharp = slab(0.01), diffuse = slab(0.2);
+  std::printf("[bonded] front width: uniform %.5f (L_a %.5f), sharp %.5f, diffuse %.5f\n",
+              uniform.frontWidth, uniform.axialLength, sharp.frontWidth, diffuse.frontWidth);
+  const double step = 2.0 / n; // a quantile is a particle's position: q n may round to the next
+  EXPECT_NEAR(uniform.frontWidth, 0.09, step);
+  EXPECT_NEAR(uniform.axialLength, 0.975 - 0.025, step);
+  EXPECT_NEAR(sharp.frontWidth, 0.009, step);        // 0.9 of the sheet's 0.01
+  EXPECT_NEAR(diffuse.frontWidth, 0.18, 2.0 * step); // 0.9 of the tail's 0.2
+}

@@ -1,6 +1,7 @@
 // BondedRun (Watson & Steinhauser 2017 on the shared time-driven protocol): an earlier time
 // gives the state it gave before, a run resumed from its checkpoint continues bit for bit, a
-// checkpoint of another set-up is refused, and a progress callback aborts the run.
+// checkpoint of another set-up or another Dissipation is refused, and a progress callback
+// aborts the run.
 #include "bonded/BondedRun.h"
 #include "bonded/BondedBody.h"
 #include "common/Error.h"
@@ -73,6 +74,17 @@ TEST(BondedRun, ResumedFromCheckpointContinuesBitForBit) {
 
   BondedRun other(smallImpact(1500));
   EXPECT_THROW(other.resumeFrom(path), InputError);
+  // The same set-up with shock heating: the file holds the paper's model, so it is refused
+  // (by name) rather than continued with the model the file holds.
+  BondedSolverParams heating;
+  heating.dissipation = BondedDissipation::ShockViscosity;
+  BondedRun otherModel(start, heating);
+  try {
+    otherModel.resumeFrom(path);
+    ADD_FAILURE() << "a checkpoint of the paper's model resumed a ShockViscosity run";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("Dissipation None"), std::string::npos) << e.what();
+  }
   std::remove(path.c_str());
 }
 
