@@ -82,6 +82,7 @@ def main(argv):
         "particles": n,
         "bulk_packing_fraction": phi,
         "top_height_m": field_value(data, "TopHeight"),
+        "coordination_number": field_value(data, "CoordinationNumber"),
         "seed": args.seed,
         "bed_seconds": round(elapsed, 3),
         "image": os.path.basename(image),

@@ -37,6 +37,20 @@ def parse_args(argv):
     return p.parse_args(argv)
 
 
+def impactor_state(data, surface):
+    """The impactor (the largest particle) at the last output: its kinetic energy, speed and the
+    depth of its centre below the bed's surface."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    import numpy as np
+    radius = vtk_to_numpy(data.GetPointData().GetArray("Radius"))
+    k = int(np.argmax(radius))
+    v = vtk_to_numpy(data.GetPointData().GetArray("Velocity"))[k]
+    m = float(vtk_to_numpy(data.GetPointData().GetArray("Mass"))[k])
+    z = float(data.GetPoint(k)[2])
+    return {"radius_m": float(radius[k]), "mass_kg": m, "speed_m_s": float(np.linalg.norm(v)),
+            "kinetic_energy_J": 0.5 * m * float(np.dot(v, v)), "centre_depth_m": surface - z}
+
+
 def main(argv):
     args = parse_args(argv)
     os.makedirs(args.output_dir, exist_ok=True)
@@ -66,7 +80,7 @@ def main(argv):
     print(f"[2/3] impact at {args.impact_speed} m/s, {args.outputs} outputs to {args.end_time} s",
           flush=True)
     start = time.time()
-    frames = []
+    frames, energies = [], []
     data = None
     for k, t in enumerate(dem.TimestepValues):
         dem.UpdatePipeline(t)
@@ -78,6 +92,8 @@ def main(argv):
         render_cross_section(dem, image, label=f"t = {t:.3f} s", color_range=(-R, 0.5),
                              resolution=(args.width, int(args.width * 9 / 16)))
         frames.append(os.path.basename(image))
+        energies.append(math.fsum(field_value(data, name) for name in
+                            ("KineticEnergy", "RotationalEnergy", "ElasticEnergy", "GravitationalEnergy")))
         print(f"      t = {field_value(data, 'Time'):.4f} s, step {int(field_value(data, 'Step'))}, "
               f"kinetic energy {field_value(data, 'KineticEnergy'):.4g} J, "
               f"max overlap {100 * field_value(data, 'MaxOverlap'):.2f} % -> {image}", flush=True)
@@ -97,6 +113,8 @@ def main(argv):
         "max_overlap_fraction": field_value(data, "MaxOverlap"),
         "overlap_warning_steps": int(field_value(data, "OverlapWarningSteps")),
         "dem_seconds_with_rendering": round(elapsed, 2),
+        "mechanical_energy_J": energies,
+        "impactor": impactor_state(data, field_value(bed_data, "SurfaceHeight")),
         "frames": frames,
     }
     write_report(args.output_dir, "sphere into a granular bed (DEM)", frames[-1], report)

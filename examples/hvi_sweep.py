@@ -15,6 +15,7 @@ stopped. --quick runs a 2 x 2 version of each at a tiny size (for the tests).
 
 import argparse
 import json
+import math
 import os
 import sys
 import time
@@ -54,15 +55,22 @@ def run_one(simple, args, eps, kappa, ratio, speed):
     source = simple.BondedImpact(ParticleCount=args.particles, Epsilon=eps, Kappa=kappa,
                                  ThicknessRatio=ratio, ImpactSpeed=speed, EndTime=args.end_time,
                                  OutputInterval=args.end_time)
+    source.UpdatePipeline(0.0)
+    start = fetch(source)
     source.UpdatePipeline(args.end_time)
     data = fetch(source)
     simple.Delete(source)
-    if data.GetNumberOfPoints() == 0:
+    if start.GetNumberOfPoints() == 0 or data.GetNumberOfPoints() == 0:
         raise RuntimeError("the run failed; see the error above")
     result = {key: field_value(data, name) for key, name in
               [("F", "Fragmentation"), ("R", "DebrisCloudRatio"),
                ("va_v0", "AxialVelocityRatio"), ("broken_bonds", "BrokenBonds"), ("time", "Time")]}
     result["particles"] = data.GetNumberOfPoints()
+    # Conservation through the run: total energy (with the broken bonds' energy) and momentum.
+    e0 = field_value(start, "TotalEnergy")
+    result["energy_drift"] = (field_value(data, "TotalEnergy") - e0) / e0
+    p0, p1 = (d.GetFieldData().GetArray("TotalMomentum").GetTuple3(0) for d in (start, data))
+    result["momentum_change"] = math.dist(p0, p1) / math.hypot(*p0)
     return result
 
 

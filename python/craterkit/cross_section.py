@@ -209,6 +209,19 @@ def show_point_spheres(simple, source, view, color_by, preset, radius):
     return _colored(simple, display, color_by, preset)
 
 
+def radius_splats(display):
+    """Makes DISPLAY show each particle as a point splat shaded as a sphere of its own Radius
+    (Point Gaussian scaled by the Radius array, not through a transfer function): particles of
+    many sizes without a glyph's triangles. Returns the display."""
+    display.SetRepresentationType("Point Gaussian")
+    display.ShaderPreset = "Sphere"
+    display.ScaleByArray = 1
+    display.SetScaleArray = ["POINTS", "Radius"]
+    display.UseScaleFunction = 0  # the radius itself, not mapped through a transfer function
+    display.GaussianRadius = 1.0
+    return display
+
+
 def _colored(simple, display, color_by, preset):
     simple.ColorBy(display, ("POINTS", color_by))
     lut = simple.GetColorTransferFunction(color_by)

@@ -30,6 +30,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 
 from craterkit import load_plugin  # noqa: E402
+from craterkit.cross_section import radius_splats  # noqa: E402
 import sci_small  # noqa: E402
 
 HEADER = """<!--
@@ -73,7 +74,7 @@ def main(argv):
     particle_height = simple.Calculator(Input=p["dem"], ResultArrayName="Height", Function="coordsZ")
     simple.RenameSource("Particle height", particle_height)
     shown = simple.Show(particle_height, particles_view)
-    spheres(shown)
+    radius_splats(shown)
     simple.ColorBy(shown, ("POINTS", "Height"))
     shown.SetScalarBarVisibility(particles_view, True)
     colour_bar(simple.GetScalarBar(heights, particles_view), "Height (m)")
@@ -86,7 +87,7 @@ def main(argv):
                                        Function="coordsZ")
     simple.RenameSource("Cross-section height", section_height)
     shown = simple.Show(section_height, section_view)
-    spheres(shown)
+    radius_splats(shown)
     simple.ColorBy(shown, ("POINTS", "Height"))
     shown.SetScalarBarVisibility(section_view, True)
     colour_bar(simple.GetScalarBar(heights, section_view), "Height (m)")
@@ -137,16 +138,6 @@ def main(argv):
 def colour_bar(bar, title):
     bar.Title, bar.ComponentTitle = title, ""
     bar.HorizontalTitle, bar.RangeLabelFormat = 1, "%.2f"
-
-
-def spheres(display):
-    """Particles as shaded spheres of their Radius (Point Gaussian: no glyph triangles)."""
-    display.SetRepresentationType("Point Gaussian")
-    display.ShaderPreset = "Sphere"
-    display.ScaleByArray = 1
-    display.SetScaleArray = ["POINTS", "Radius"]
-    display.UseScaleFunction = 0  # the radius itself, not mapped through a transfer function
-    display.GaussianRadius = 1.0
 
 
 if __name__ == "__main__":

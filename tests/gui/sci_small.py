@@ -21,6 +21,7 @@ asserts its crater's diameter against D_pi and prints the figures of its run.
 """
 
 from craterkit import fetch, field_value, sci
+from craterkit.cross_section import radius_splats
 
 GRAVITY = 1.0e5  # m/s^2
 IMPACT_SPEED = 500.0  # m/s; the SCI impactor's mass and materials are kept
@@ -99,13 +100,7 @@ def show_cross_section(simple, p, view):
     baseline. Returns the display."""
     height = simple.Calculator(Input=simple.OutputPort(p["profile"], 1), ResultArrayName="Height",
                                Function="coordsZ")
-    display = simple.Show(height, view)
-    display.SetRepresentationType("Point Gaussian")
-    display.ShaderPreset = "Sphere"
-    display.ScaleByArray = 1
-    display.SetScaleArray = ["POINTS", "Radius"]
-    display.UseScaleFunction = 0  # the radius itself, not mapped through a transfer function
-    display.GaussianRadius = 1.0
+    display = radius_splats(simple.Show(height, view))
     simple.ColorBy(display, ("POINTS", "Height"))
     lut = simple.GetColorTransferFunction("Height")
     lut.ApplyPreset("Viridis (matplotlib)", True)

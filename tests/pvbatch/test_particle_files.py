@@ -106,5 +106,15 @@ open(trunc, "wb").write(open(ss_path, "rb").read()[:-10])
 with captured_vtk_messages() as log:
     out = fetch(simple.PkdgravSsReader(FileNames=[trunc]))
 t.check(out.GetNumberOfPoints() == 0 and "trunc.ss: byte 8" in log["text"], f"truncated .ss: {log['text'][:300]!r}")
+# A checkpoint with one bit flipped in its payload: CraterKitCheckpointReader refuses it by name
+# (its CRC-32 no longer matches; docs/proxies/ParticleReaders.md), and reads nothing.
+corrupt = os.path.join(folder, "corrupt.ckdem")
+data = bytearray(open(ck, "rb").read())
+data[len(data) // 2] ^= 0x10
+open(corrupt, "wb").write(bytes(data))
+with captured_vtk_messages() as log:
+    out = fetch(simple.CraterKitCheckpointReader(FileNames=[corrupt]))
+t.check(out.GetNumberOfPoints() == 0 and "corrupt.ckdem" in log["text"] and "corrupt (checksum" in log["text"],
+        f"a flipped bit in a checkpoint: {log['text'][:300]!r}")
 
 sys.exit(t.close())
