@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <istream>
 #include <ostream>
 #include <string>
@@ -132,7 +133,7 @@ BondedSolver BondedSolver::readCheckpoint(const std::string& path) {
     if (!(law.sigma > 0.0 && law.epsilon > 0.0 && law.kappa > 0.0 && law.rCut > law.rEq()) ||
         !std::all_of(s.sys_.masses.begin(), s.sys_.masses.end(), [](double m) { return m > 0.0; }))
       throw InputError("the bonded checkpoint has an invalid law or masses");
-    if (!(s.dt_ > 0.0))
+    if (!(s.dt_ > 0.0 && std::isfinite(s.dt_)))
       throw InputError("the bonded checkpoint has no valid time step");
     if (!std::all_of(s.sys_.bonds.begin(), s.sys_.bonds.end(),
                      [n](const BondedBond& b) { return b.i < b.j && b.j < n; }) ||

@@ -77,6 +77,21 @@ void BondedRun::resumeFrom(const std::string& checkpointPath) {
                        std::to_string(solver->system().bonds.size()) + " bonds, this set-up " +
                        std::to_string(initial_.size()) + " and " +
                        std::to_string(initial_.bonds.size()));
+    // The same set-up: the law, the impact and the step's settings (the state at a later time
+    // differs, the set-up must not: an earlier time is replayed from the initial state).
+    const BondedSystem& was = solver->system();
+    const ws2017::Law& law = was.law;
+    if (law.sigma != initial_.law.sigma || law.epsilon != initial_.law.epsilon ||
+        law.kappa != initial_.law.kappa || law.rCut != initial_.law.rCut ||
+        was.impactSpeed != initial_.impactSpeed || was.axis != initial_.axis ||
+        was.rearFace != initial_.rearFace || was.masses != initial_.masses ||
+        solver->params().timeStep != params_.timeStep ||
+        solver->params().timeStepFraction != params_.timeStepFraction ||
+        solver->params().skin != params_.skin)
+      throw InputError(checkpointPath +
+                       ": the bonded checkpoint holds another set-up (its law, impact, masses "
+                       "or time step differ from this run's): resume with the same, or start "
+                       "afresh");
     const BondedSolverParams& saved = solver->params();
     if (saved.dissipation != params_.dissipation ||
         (params_.dissipation != BondedDissipation::None &&

@@ -69,8 +69,9 @@ struct Reader {
       msg << "checkpoint corrupt: " << what << " has " << size << " entries, expected " << expected;
       throw InputError(msg.str());
     }
-    if (size > left / sizeof(T))
-      need(size * sizeof(T), what);
+    if (size > left / sizeof(T)) // before size * sizeof(T), which a crafted count could wrap
+      throw InputError(std::string("checkpoint truncated or corrupt: ") + what + " holds " +
+                       std::to_string(size) + " entries, more than the bytes left");
     need(size * sizeof(T), what);
     std::vector<T> v(size);
     in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(size * sizeof(T)));

@@ -74,6 +74,16 @@ TEST(BondedRun, ResumedFromCheckpointContinuesBitForBit) {
 
   BondedRun other(smallImpact(1500));
   EXPECT_THROW(other.resumeFrom(path), InputError);
+  // The same particles and bonds with another step or another impact speed: refused too (an
+  // earlier time would otherwise be replayed with this run's settings, not the file's).
+  BondedSolverParams finer;
+  finer.timeStepFraction = 0.5 * BondedSolverParams{}.timeStepFraction;
+  BondedRun otherStep(start, finer);
+  EXPECT_THROW(otherStep.resumeFrom(path), InputError);
+  BondedSystem faster = start;
+  faster.impactSpeed *= 1.5;
+  BondedRun otherSpeed(faster);
+  EXPECT_THROW(otherSpeed.resumeFrom(path), InputError);
   // The same set-up with shock heating: the file holds the paper's model, so it is refused
   // (by name) rather than continued with the model the file holds.
   BondedSolverParams heating;
