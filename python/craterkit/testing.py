@@ -34,6 +34,32 @@ def timed_run(args, **kwargs):
     return done
 
 
+def check_tree_paths(check, top, build_dir, source_dir, shown=lambda rel: rel):
+    """Checks, with CHECK, that nothing below TOP (an install prefix or an unpacked package)
+    points into the build or source tree: every ELF has RUNPATH $ORIGIN alone, no file holds the
+    build folder's path and no text file names the source tree (SHOWN turns a path relative to
+    TOP into the one the messages give). Returns the number of ELF files."""
+    import os
+    elf = 0
+    for folder, _, files in os.walk(top):
+        for name in files:
+            path = os.path.join(folder, name)
+            if os.path.islink(path):
+                continue
+            data = open(path, "rb").read()
+            rel = shown(os.path.relpath(path, top))
+            check(build_dir.encode() not in data, f"{rel} holds the build folder's path {build_dir}")
+            if data[:4] == b"\x7fELF":
+                elf += 1
+                dyn = timed_run(["readelf", "-d", path]).stdout
+                runpaths = [line.split("[", 1)[1].rstrip("]") for line in dyn.splitlines()
+                            if "(RUNPATH)" in line or "(RPATH)" in line]
+                check(runpaths == ["$ORIGIN"], f"{rel}: RUNPATH {runpaths}, not [$ORIGIN]")
+            elif data[:8] != b"!<arch>\n":
+                check(source_dir.encode() not in data, f"{rel} names the source tree {source_dir}")
+    return elf
+
+
 @contextlib.contextmanager
 def captured_vtk_messages():
     """Captures VTK error and warning text (pvbatch routes print() through the same window,

@@ -23,7 +23,7 @@ import tempfile
 
 build_dir, source_dir, version = os.path.realpath(sys.argv[1]), os.path.realpath(sys.argv[2]), sys.argv[3]
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "python"))
-from craterkit.testing import Checker, timed_run as run  # noqa: E402
+from craterkit.testing import Checker, check_tree_paths, timed_run as run  # noqa: E402
 
 checker = Checker("install test")
 check, failures = checker.check, checker.failures
@@ -94,25 +94,7 @@ check(f"CraterKit {version}" in manifest and "bin/craterkit-pvbatch" in manifest
       "the new manifest does not list this install")
 
 # Nothing points into the build or source tree.
-elf_count = 0
-for root, dirs, files in os.walk(prefix):
-    for name in files:
-        path = os.path.join(root, name)
-        if os.path.islink(path):
-            continue
-        data = open(path, "rb").read()
-        rel = os.path.relpath(path, prefix)
-        if data[:4] == b"\x7fELF":
-            elf_count += 1
-            dyn = run(["readelf", "-d", path]).stdout
-            paths = [line.split("[", 1)[1].rstrip("]") for line in dyn.splitlines()
-                     if "(RUNPATH)" in line or "(RPATH)" in line]
-            check(paths == ["$ORIGIN"], f"{rel}: RUNPATH {paths}, not [$ORIGIN]")
-            check(build_dir.encode() not in data, f"{rel} holds the build folder's path {build_dir}")
-        elif data[:8] == b"!<arch>\n":
-            check(build_dir.encode() not in data, f"{rel} holds the build folder's path {build_dir}")
-        else:
-            check(source_dir.encode() not in data, f"{rel} names the source tree {source_dir}")
+elf_count = check_tree_paths(check, prefix, build_dir, source_dir)
 check(elf_count == 3, f"{elf_count} ELF files installed, expected the plugin's 3")
 
 # Reinstall over it: a changed file is replaced, the old manifest's files removed first.

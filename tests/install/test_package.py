@@ -17,7 +17,7 @@ import tempfile
 
 build_dir, source_dir, version = os.path.realpath(sys.argv[1]), os.path.realpath(sys.argv[2]), sys.argv[3]
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "python"))
-from craterkit.testing import Checker, timed_run as run  # noqa: E402
+from craterkit.testing import Checker, check_tree_paths, timed_run as run  # noqa: E402
 
 checker = Checker("package test")
 check, failures = checker.check, checker.failures
@@ -78,23 +78,7 @@ check(not [p for p in paths if not p.startswith("/usr/")], "files outside /usr")
 # Nothing points into the build or source tree.
 root = os.path.join(tmp, "root")
 run(["dpkg-deb", "-x", deb, root])
-elf = 0
-for folder, dirs, files in os.walk(root):
-    for name in files:
-        path = os.path.join(folder, name)
-        if os.path.islink(path):
-            continue
-        data = open(path, "rb").read()
-        rel = "/" + os.path.relpath(path, root)
-        check(build_dir.encode() not in data, f"{rel} holds the build folder's path {build_dir}")
-        if data[:4] == b"\x7fELF":
-            elf += 1
-            dyn = run(["readelf", "-d", path]).stdout
-            runpaths = [line.split("[", 1)[1].rstrip("]") for line in dyn.splitlines()
-                        if "(RUNPATH)" in line or "(RPATH)" in line]
-            check(runpaths == ["$ORIGIN"], f"{rel}: RUNPATH {runpaths}, not [$ORIGIN]")
-        else:
-            check(source_dir.encode() not in data, f"{rel} names the source tree {source_dir}")
+elf = check_tree_paths(check, root, build_dir, source_dir, shown=lambda rel: "/" + rel)
 check(elf == 3, f"{elf} ELF files in the package, expected the plugin's 3")
 conf = open(os.path.join(root, "usr/bin/paraview.conf")).read().strip()
 check(os.path.normpath(os.path.join("/usr/bin", conf)) == f"{plugins}/craterkit.plugins.xml",
