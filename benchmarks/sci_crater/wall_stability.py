@@ -23,7 +23,7 @@ of them.
 
 The bed rests in the pits' own contact law (GranularBed's DEMMaxExpectedSpeed is
 --max-expected-speed). --packing Loose makes GranularBed's loose bed, its grain density
-rho_bulk / LOOSE_FRACTION.
+rho_bulk / craterkit.sci.PACKING_FRACTION["Loose"].
 
 Writes OUTPUT_DIR/wall_stability.json (one record per pit and time, rewritten after each) and a
 cross-section of each pit at its last time (pitSLOPE.png). --resume keeps the pits the file
@@ -48,11 +48,6 @@ from craterkit.cross_section import crater_measures, render_cross_section
 # The speed the SCI crater's DEM stage at Ryugu's gravity sets its contacts for: 1.5 times the
 # fastest grain after the hand-off (report.json's dem_max_expected_speed_m_s).
 CRATER_STAGE_SPEED = 0.0663
-# The loose bed's nominal packing fraction (the grain density is rho_bulk over it), used where
-# craterkit.sci has no entry for it: GranularBed's Loose box bed measured 0.5788
-# (BedAtRest.LooseBedIsLooserAndCarriesItsWeight).
-LOOSE_FRACTION = 0.58
-
 
 def parse_args(argv):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -103,7 +98,6 @@ class SciBed:
             print(f"error: --pit-diameter {args.pit_diameter:g} m does not fit the bowl ({2 * self.bowl:.3g} m across)",
                   file=sys.stderr)
             raise SystemExit(2)
-        sci.PACKING_FRACTION.setdefault("Loose", LOOSE_FRACTION)
         self.grain = self.sc.grain_radius(args.particles, args.packing)
 
     def build(self, simple, args):
@@ -113,7 +107,7 @@ class SciBed:
         start = time.time()
         _, self.data, self.surface, _ = sci.bed_stage(simple, self.sc, args.packing, args.particles, heading="",
                                                       SettlingFriction=args.settling_friction,
-                                                      DEMMaxExpectedSpeed=args.max_expected_speed)
+                                                      dem_speed=args.max_expected_speed)
         self.packing = field_value(self.data, "BulkPackingFraction")
         print(f"bed: {self.data.GetNumberOfPoints()} {args.packing} grains, packing fraction {self.packing:.3f}, "
               f"coordination number {field_value(self.data, 'CoordinationNumber'):.2f}, surface at "

@@ -41,7 +41,8 @@ SCI_CRATER_DEFINITIONS = {
 SCI_IMPACT = {"mass": 2.0, "speed": 2000.0, "impactor": "copper", "target": "regolith",
               "friction_angle": 30.0}
 
-# The beds' packing fractions, for the grain density that gives the target's bulk density.
+# The beds' packing fractions, for the grain density that gives the target's bulk density
+# (Loose: GranularBed's loose box bed measured 0.5796, BedAtRest.LooseBedIsLooserAndCarriesItsWeight).
 PACKING_FRACTION = {"RCP": 0.60, "HCP": 0.74, "Loose": 0.58}
 
 # The ejecta speed limit of Zhang et al. at Ryugu (1 m/s, three escape speeds) in units of the
