@@ -9,6 +9,7 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkObjectFactory.h>
+#include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
@@ -40,9 +41,15 @@ void vtkCraterKitDEMIntegrator::BuildRun(vtkPolyData* input) {
   vtkFieldData* fd = input->GetFieldData();
   const DemSetup setup = bridge::demSetupOf(this, fd);
   const DemProblem problem = setUpDem(bridge::fromPolyData(input), setup);
-  this->Run = std::make_unique<DemRun>(problem.particles, problem.params,
-                                       bridge::fieldScalar(fd, "Time", 0.0),
-                                       static_cast<std::size_t>(std::max(0, this->KeptStates)));
+  // The run rebuilds its initial state from the input when it needs it again, instead of
+  // holding a copy (a shallow copy shares the input's arrays; a new input rebuilds the run).
+  vtkSmartPointer<vtkPolyData> held = vtkSmartPointer<vtkPolyData>::New();
+  held->ShallowCopy(input);
+  this->Run = std::make_unique<DemRun>(
+      problem.particles,
+      [held, setup] { return setUpDem(bridge::fromPolyData(held), setup).particles; },
+      problem.params, bridge::fieldScalar(fd, "Time", 0.0),
+      static_cast<std::size_t>(std::max(0, this->KeptStates)));
   bridge::resumeIfAsked(*this->Run, this->ResumeFromCheckpoint != 0, this->CheckpointFile);
   this->WarningsShown = 0;
 }

@@ -50,6 +50,8 @@ const BondedSolver& BondedRun::advanceTo(double time, const ProgressCallback& pr
                                          const std::string& checkpointPath,
                                          long long checkpointEvery) {
   const long long target = stepOf(time);
+  if (target != static_cast<long long>(solver_->stepCount()))
+    leaving([&] { return std::make_shared<const BondedSolver>(*solver_); });
   goBackTo(
       target, static_cast<long long>(solver_->stepCount()),
       [&] { return std::make_unique<BondedSolver>(initial_, params_); },
@@ -62,8 +64,7 @@ const BondedSolver& BondedRun::advanceTo(double time, const ProgressCallback& pr
       checkpointReached(target);
     }
   }
-  keep(static_cast<long long>(solver_->stepCount()),
-       [&] { return std::make_shared<const BondedSolver>(*solver_); });
+  standAt(static_cast<long long>(solver_->stepCount()));
   return *solver_;
 }
 

@@ -71,6 +71,63 @@ private:
   std::streambuf* to_;
 };
 
+// Counts what is written, and keeps none of it.
+class CountingBuffer : public std::streambuf {
+public:
+  std::uint64_t bytes = 0;
+
+protected:
+  int_type overflow(int_type c) override {
+    if (!traits_type::eq_int_type(c, traits_type::eof()))
+      ++bytes;
+    return traits_type::not_eof(c);
+  }
+  std::streamsize xsputn(const char*, std::streamsize n) override {
+    bytes += static_cast<std::uint64_t>(n);
+    return n;
+  }
+};
+
+// Reads and writes a fixed block of memory in place, with seeks within it (the frame's writer
+// goes back to fill in its header; its reader goes back to the payload). Writing past the end
+// fails.
+class SpanBuffer : public std::streambuf {
+public:
+  SpanBuffer(char* begin, std::size_t size) {
+    setg(begin, begin, begin + size);
+    setp(begin, begin + size);
+  }
+
+protected:
+  pos_type seekoff(off_type off, std::ios_base::seekdir dir,
+                   std::ios_base::openmode which) override {
+    const bool out = (which & std::ios_base::out) != 0;
+    char* base = out ? pbase() : eback();
+    char* end = out ? epptr() : egptr();
+    char* now = out ? pptr() : gptr();
+    const off_type from = dir == std::ios_base::beg   ? 0
+                          : dir == std::ios_base::cur ? now - base
+                                                      : end - base;
+    const off_type to = from + off;
+    if (to < 0 || to > end - base)
+      return pos_type(off_type(-1));
+    if (out) {
+      setp(base, end);
+      for (off_type left = to; left > 0;) { // pbump takes an int
+        const int step = static_cast<int>(std::min<off_type>(left, 1 << 30));
+        pbump(step);
+        left -= step;
+      }
+    } else {
+      setg(base, base + to, end);
+    }
+    return pos_type(to);
+  }
+  pos_type seekpos(pos_type pos, std::ios_base::openmode which) override {
+    return seekoff(off_type(pos), std::ios_base::beg, which);
+  }
+};
+
 std::string sizeText(std::uint64_t bytes) {
   return std::to_string(bytes) + (bytes == 1 ? " byte" : " bytes");
 }
@@ -123,6 +180,28 @@ void writeCheckpointFile(const std::string& path, const CheckpointKind& kind,
                          const std::function<void(std::ostream&)>& payload) {
   writeFileAtomically(path, std::string("the ") + kind.description,
                       [&](std::ostream& out) { writeCheckpointFrame(out, kind, payload); });
+}
+
+std::string checkpointBytes(const CheckpointKind& kind,
+                            const std::function<void(std::ostream&)>& payload) {
+  CountingBuffer counter;
+  std::ostream counted(&counter);
+  payload(counted);
+  std::string bytes(kCheckpointHeaderBytes + counter.bytes, '\0');
+  SpanBuffer span(bytes.data(), bytes.size());
+  std::ostream out(&span);
+  writeCheckpointFrame(out, kind, payload);
+  if (static_cast<std::uint64_t>(out.tellp()) != bytes.size())
+    throw std::logic_error(std::string("the ") + kind.description +
+                           " wrote a payload of another size the second time");
+  return bytes;
+}
+
+void readCheckpointBytes(const std::string& bytes,
+                         const std::function<void(std::istream&, std::uint64_t)>& read) {
+  SpanBuffer span(const_cast<char*>(bytes.data()), bytes.size()); // read only: no put
+  std::istream in(&span);
+  read(in, bytes.size());
 }
 
 CheckpointFrame readCheckpointFrame(std::istream& in, std::uint64_t available,

@@ -83,6 +83,16 @@ void writeCheckpointFrame(std::ostream& out, const CheckpointKind& kind,
 void writeCheckpointFile(const std::string& path, const CheckpointKind& kind,
                          const std::function<void(std::ostream&)>& payload);
 
+// The same as bytes in memory, for the snapshots a run keeps (DemRun): the string is allocated
+// once at its exact size, the payload being written twice (counted, then stored), so that a
+// snapshot never holds a growing buffer and a copy of itself at once.
+std::string checkpointBytes(const CheckpointKind& kind,
+                            const std::function<void(std::ostream&)>& payload);
+
+// Calls read(in, size) with IN reading BYTES where they are (no copy) and SIZE their count.
+void readCheckpointBytes(const std::string& bytes,
+                         const std::function<void(std::istream&, std::uint64_t)>& read);
+
 // Checks the frame of the `available` bytes from IN's position (the whole payload's checksum
 // included, read through once) and leaves IN at the payload's first byte: for version 1, at
 // the position it had (the payload is the whole file). Throws InputError with a message

@@ -5,6 +5,10 @@
 // the run writes none until it has passed the file's position); a resume replaces the solver
 // and forgets the snapshots.
 //
+// A requested state is kept when the solver leaves it, not when it reaches it: until then the
+// solver holds that state itself, so the latest requested state is never held twice (a run
+// asked for one time keeps no snapshot at all).
+//
 // Position is the run's own measure of progress: the step count for a fixed-step solver
 // (DemRun), the simulated time for an adaptive one (SphRun). Snapshot is whatever restores
 // a solver (checkpoint bytes, a copy of the state).
@@ -14,6 +18,7 @@
 #include <cstddef>
 #include <map>
 #include <memory>
+#include <optional>
 #include <utility>
 
 namespace craterkit {
@@ -24,6 +29,8 @@ public:
   // Position of the furthest state written to or resumed from the checkpoint file
   // (the constructor's `none` if there is none).
   Position checkpointPosition() const { return checkpoint_; }
+  // The snapshots kept in memory (the requested state the solver stands at is not among them).
+  std::size_t keptCount() const { return kept_.size(); }
 
 protected:
   TimeDrivenRun(std::unique_ptr<Solver> first, std::size_t keptStates, Position none)
@@ -44,9 +51,17 @@ protected:
     }
   }
 
-  // Keeps make() as the snapshot at `now` (once per position), dropping the oldest beyond
-  // keptStates: the initial state is always recoverable from the input.
-  template <class Make> void keep(Position now, Make&& make) {
+  // The solver stands at `now`, a requested state (the end of advanceTo).
+  void standAt(Position now) { standing_ = now; }
+
+  // Called before the solver moves (on, or back): keeps the requested state it stands at as
+  // make() (once per position), dropping the oldest beyond keptStates: the initial state is
+  // always recoverable from the input.
+  template <class Make> void leaving(Make&& make) {
+    if (!standing_)
+      return;
+    const Position now = *standing_;
+    standing_.reset();
     if (keptStates_ == 0 || kept_.count(now))
       return;
     kept_[now] = make();
@@ -62,6 +77,7 @@ protected:
   void resumed(std::unique_ptr<Solver> solver, Position at) {
     solver_ = std::move(solver);
     kept_.clear();
+    standing_.reset();
     checkpoint_ = at;
   }
 
@@ -70,6 +86,7 @@ protected:
 private:
   std::size_t keptStates_;
   std::map<Position, Snapshot> kept_;
+  std::optional<Position> standing_; // the requested state the solver stands at, not yet kept
   Position checkpoint_;
 };
 

@@ -20,7 +20,6 @@ void ContactTable::resize(std::size_t count) {
     h.resize(count + 1, 0.0);
     h[count] = 0.0;
   }
-  result.resize(kResultWords * count, 0.0);
 }
 
 void ContactTable::reserveRows(std::size_t count) {
@@ -31,7 +30,6 @@ void ContactTable::reserveRows(std::size_t count) {
   growFresh(from, count);
   for (FreshVector<double>& h : history)
     growFresh(h, count + 1);
-  growFresh(result, kResultWords * count);
 }
 
 void ContactTable::setRows(std::size_t count) {
@@ -135,7 +133,8 @@ template <class Law> CK_ALWAYS_INLINE double evaluateRow(const Law& law, const F
 template <class Law>
 CK_ALWAYS_INLINE double evaluateRows(const Law& law, const FrictionConstants& fc, double dt,
                                      const ContactInputs& in, const ContactTable& before,
-                                     ContactTable& now, std::size_t begin, std::size_t end) {
+                                     ContactTable& now, double* res, std::size_t begin,
+                                     std::size_t end) {
   const std::uint32_t *pi = now.first.data(), *pj = now.second.data(), *from = now.from.data();
   const double* hb[ContactTable::kHistoryWords];
   double* hn[ContactTable::kHistoryWords];
@@ -143,7 +142,6 @@ CK_ALWAYS_INLINE double evaluateRows(const Law& law, const FrictionConstants& fc
     hb[q] = before.history[q].data();
     hn[q] = now.history[q].data();
   }
-  double* res = now.result.data();
   const FrictionConstants f = fc; // a local copy: no store in the loop can change it
   double worst = 0.0;
 #pragma omp simd reduction(max : worst)
@@ -157,14 +155,15 @@ CK_ALWAYS_INLINE double evaluateRows(const Law& law, const FrictionConstants& fc
 CK_SIMD_CLONES double evaluateContacts(const LinearSpringDashpot& law, const FrictionConstants& fc,
                                        double dt, const ContactInputs& in,
                                        const ContactTable& before, ContactTable& now,
-                                       std::size_t begin, std::size_t end) {
-  return evaluateRows(law, fc, dt, in, before, now, begin, end);
+                                       double* result, std::size_t begin, std::size_t end) {
+  return evaluateRows(law, fc, dt, in, before, now, result, begin, end);
 }
 
 CK_SIMD_CLONES double evaluateContacts(const Hertz& law, const FrictionConstants& fc, double dt,
                                        const ContactInputs& in, const ContactTable& before,
-                                       ContactTable& now, std::size_t begin, std::size_t end) {
-  return evaluateRows(law, fc, dt, in, before, now, begin, end);
+                                       ContactTable& now, double* result, std::size_t begin,
+                                       std::size_t end) {
+  return evaluateRows(law, fc, dt, in, before, now, result, begin, end);
 }
 
 void WallContacts::build(const std::vector<std::uint64_t>& near) {

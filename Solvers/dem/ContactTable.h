@@ -4,10 +4,12 @@
 //
 // A bed at rest has a few per cent of its listed pairs in contact. The pair list
 // (dem/PairList.h) keeps per pair only its particles, a flag and a row of the table; the table
-// holds the contacts' histories and results as arrays of components. Each step writes a new
+// holds the contacts' histories as arrays of components. Each step writes a new
 // table from the pairs found touching, in the order of the pair list; each row reads its
 // history from its row of the previous table (`from`; the zero row past the end for a new
-// contact), so the contact law runs over contiguous arrays. The loop is written for SIMD
+// contact), so the contact law runs over contiguous arrays. The results (forces and torques,
+// kResultWords a row) are read in the step that writes them, so the two tables share one
+// array of them (ContactResults), kept by the solver. The loop is written for SIMD
 // (`omp simd`, a branch-free law, compiled for AVX-512 and generic x86-64 as in
 // common/SimdClones.h): GCC 12 runs the AVX-512 version eight contacts at once (the body is one
 // inlined call, so that its local arrays do not become per-lane arrays) and keeps the generic
@@ -28,7 +30,7 @@ namespace craterkit {
 
 struct ContactTable {
   static constexpr int kHistoryWords = 10; // spring (3), rolling (3), twisting, normal (3)
-  static constexpr int kResultWords = 9;   // force on first, torque on first, on second
+  static constexpr int kResultWords = 9;   // force on first, torque on first, on second (results)
 
   std::size_t rows = 0;
   // FreshVector: the rows a growth adds are left unwritten, and the threads that fill them touch
@@ -37,7 +39,6 @@ struct ContactTable {
   FreshVector<std::uint32_t> from;          // row in the previous table (its `rows`: new)
   // Component q of row c's history is history[q][c]; row `rows` is all zero (a new contact).
   std::array<FreshVector<double>, kHistoryWords> history;
-  FreshVector<double> result; // kResultWords per row
 
   // Sets the number of rows (keeping the memory; rows it adds are zero) and zeroes the history
   // row past the end.
@@ -63,14 +64,15 @@ struct ContactInputs {
 };
 
 // Evaluates rows [begin, end) of NOW: the geometry from the particles, the history from
-// BEFORE's row now.from[c], the contact law (ssdemContactLane); writes each row's history and
-// result. Returns the largest overlap relative to the smaller radius (0 if none).
+// BEFORE's row now.from[c], the contact law (ssdemContactLane); writes each row's history, and
+// its result to kResultWords words of RESULT from kResultWords * c. Returns the largest overlap
+// relative to the smaller radius (0 if none).
 double evaluateContacts(const LinearSpringDashpot& law, const FrictionConstants& fc, double dt,
                         const ContactInputs& in, const ContactTable& before, ContactTable& now,
-                        std::size_t begin, std::size_t end);
+                        double* result, std::size_t begin, std::size_t end);
 double evaluateContacts(const Hertz& law, const FrictionConstants& fc, double dt,
                         const ContactInputs& in, const ContactTable& before, ContactTable& now,
-                        std::size_t begin, std::size_t end);
+                        double* result, std::size_t begin, std::size_t end);
 
 // The (particle, wall) pairs within reach at the last neighbour-list build, sorted by particle
 // then wall, with their histories stored densely (only the grains at the container touch it).

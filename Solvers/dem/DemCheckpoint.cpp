@@ -5,8 +5,10 @@
 #include "common/Error.h"
 #include "dem/PairList.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 namespace craterkit {
@@ -15,8 +17,10 @@ namespace craterkit {
 // Every count is checked against the bytes left in the payload before anything is allocated.
 namespace {
 
-// The payload's magic, which a version-1 file (the payload alone) begins with.
-constexpr char kMagic[8] = {'C', 'K', 'D', 'E', 'M', 'C', 'P', '1'};
+// The payload's magic: CKDEMCP2 with the sparse wall histories, CKDEMCP1 (which a version-1
+// file, the payload alone, begins with) with one wall history per particle and wall.
+constexpr char kMagic[8] = {'C', 'K', 'D', 'E', 'M', 'C', 'P', '2'};
+constexpr char kDenseWallsMagic[8] = {'C', 'K', 'D', 'E', 'M', 'C', 'P', '1'};
 const CheckpointKind kDem{"DEM", "DEM checkpoint", {'C', 'K', 'D', 'E', 'M', 'C', 'P', '1'}};
 
 struct Writer {
@@ -81,6 +85,36 @@ struct Reader {
   }
 };
 
+// The saved (particle, wall) histories, sorted by particle then wall.
+struct SavedWallContacts {
+  std::vector<std::uint32_t> particle, wall;
+  std::vector<ContactHistory> history;
+  std::vector<char> active;
+};
+
+SavedWallContacts readWallContacts(Reader& r, std::uint64_t n, std::uint64_t walls, bool dense) {
+  SavedWallContacts s;
+  if (dense) { // CKDEMCP1: one entry per particle and wall, in that order
+    s.history = r.vec<ContactHistory>("wall histories", n * walls);
+    s.active = r.vec<char>("wall contacts", n * walls);
+    for (std::uint64_t k = 0; k < n * walls; ++k) {
+      s.particle.push_back(static_cast<std::uint32_t>(k / walls));
+      s.wall.push_back(static_cast<std::uint32_t>(k % walls));
+    }
+    return s;
+  }
+  s.particle = r.vec<std::uint32_t>("wall contacts", ~0ULL);
+  s.wall = r.vec<std::uint32_t>("wall contacts", s.particle.size());
+  s.history = r.vec<ContactHistory>("wall histories", s.particle.size());
+  s.active = r.vec<char>("wall contacts", s.particle.size());
+  for (std::size_t k = 0; k < s.particle.size(); ++k)
+    if (s.particle[k] >= n || s.wall[k] >= walls ||
+        (k > 0 && (static_cast<std::uint64_t>(s.particle[k - 1]) << 32 | s.wall[k - 1]) >=
+                      (static_cast<std::uint64_t>(s.particle[k]) << 32 | s.wall[k])))
+      throw InputError("checkpoint corrupt: wall contact list out of order");
+  return s;
+}
+
 } // namespace
 
 void DemSolver::writeCheckpoint(std::ostream& framed) const {
@@ -125,33 +159,56 @@ void DemSolver::writeCheckpointPayload(std::ostream& out) const {
   w.vec(s.id);
   w.vec(acc_);
   w.vec(alpha_);
-  std::vector<std::uint32_t> ci, cj;
-  std::vector<ContactHistory> ch;
+  // The contacts as three arrays (first, second, history), each written as it is read from
+  // the pair list and the table: no copy of them is held (a snapshot at 10^6 grains).
   const ContactTable& table = tables_[current_];
-  for (std::size_t k = 0; k < pairs_.size(); ++k)
-    if (pairs_.active[k]) {
-      ci.push_back(pairs_.first[k]);
-      cj.push_back(pairs_.second[k]);
-      ch.push_back(table.historyAt(pairs_.row[k]));
+  const std::uint64_t contacts = static_cast<std::uint64_t>(
+      std::count_if(pairs_.active.begin(), pairs_.active.end(), [](char a) { return a != 0; }));
+  const auto eachContact = [&](auto item) { // in blocks of 4096, as vec() writes them
+    using T = decltype(item(std::size_t{0}));
+    std::vector<T> block;
+    block.reserve(4096);
+    const auto flush = [&] {
+      out.write(reinterpret_cast<const char*>(block.data()),
+                static_cast<std::streamsize>(block.size() * sizeof(T)));
+      block.clear();
+    };
+    w.pod(contacts);
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+      if (!pairs_.active[k])
+        continue;
+      block.push_back(item(k));
+      if (block.size() == block.capacity())
+        flush();
     }
-  w.vec(ci);
-  w.vec(cj);
-  w.vec(ch);
-  // The wall histories as one entry per particle and wall (the file's layout).
-  const std::size_t walls = params_.walls.size();
-  std::vector<ContactHistory> wh(n_ * walls);
-  std::vector<char> wa(n_ * walls, 0);
-  for (std::size_t c = 0; c < wallContacts_.size(); ++c) {
-    const std::size_t at = wallContacts_.particle[c] * walls + wallContacts_.wall[c];
-    wh[at] = wallContacts_.history[c];
-    wa[at] = wallContacts_.active[c];
-  }
-  w.vec(wh);
-  w.vec(wa);
+    flush();
+  };
+  eachContact([&](std::size_t k) { return pairs_.first[k]; });
+  eachContact([&](std::size_t k) { return pairs_.second[k]; });
+  eachContact([&](std::size_t k) { return table.historyAt(pairs_.row[k]); });
+  // The (particle, wall) pairs within reach, sorted by particle then wall, with their histories
+  // and flags.
+  w.vec(wallContacts_.particle);
+  w.vec(wallContacts_.wall);
+  w.vec(wallContacts_.history);
+  w.vec(wallContacts_.active);
   w.pod<std::uint64_t>(overlapWarningSteps_);
   out.write(kMagic, sizeof(kMagic)); // trailer: a complete file ends with the magic again
   if (!out)
     throw std::runtime_error("writing the checkpoint failed");
+}
+
+std::string DemSolver::checkpointBytes() const {
+  return craterkit::checkpointBytes(kDem,
+                                    [this](std::ostream& out) { writeCheckpointPayload(out); });
+}
+
+DemSolver DemSolver::fromCheckpointBytes(const std::string& bytes) {
+  std::unique_ptr<DemSolver> solver;
+  readCheckpointBytes(bytes, [&](std::istream& in, std::uint64_t size) {
+    solver = std::make_unique<DemSolver>(readCheckpoint(in, size));
+  });
+  return std::move(*solver);
 }
 
 void DemSolver::writeCheckpoint(const std::string& path) const {
@@ -172,7 +229,8 @@ DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t framed,
   char magic[8];
   r.need(sizeof(magic), "magic");
   in.read(magic, sizeof(magic));
-  if (!in || std::memcmp(magic, kMagic, sizeof(magic)) != 0)
+  const bool denseWalls = in && std::memcmp(magic, kDenseWallsMagic, sizeof(magic)) == 0;
+  if (!in || (!denseWalls && std::memcmp(magic, kMagic, sizeof(magic)) != 0))
     throw InputError("not a CraterKit DEM checkpoint (wrong magic)");
   if (r.pod<std::uint32_t>("endianness") != 1u)
     throw InputError("checkpoint written on a machine of the other endianness");
@@ -225,13 +283,12 @@ DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t framed,
   auto ci = r.vec<std::uint32_t>("contacts", ~0ULL);
   auto cj = r.vec<std::uint32_t>("contacts", ci.size());
   auto ch = r.vec<ContactHistory>("contact histories", ci.size());
-  auto wh = r.vec<ContactHistory>("wall histories", n * walls);
-  auto wa = r.vec<char>("wall contacts", n * walls);
+  const SavedWallContacts saved = readWallContacts(r, n, walls, denseWalls);
   const auto warnings = r.pod<std::uint64_t>("warning count");
   char trailer[8];
   r.need(sizeof(trailer), "trailer");
   in.read(trailer, sizeof(trailer));
-  if (!in || std::memcmp(trailer, kMagic, sizeof(trailer)) != 0)
+  if (!in || std::memcmp(trailer, magic, sizeof(trailer)) != 0)
     throw InputError(
         "checkpoint incomplete (no trailer): the run was interrupted while writing it");
   for (std::size_t k = 0; k < ci.size(); ++k)
@@ -248,12 +305,17 @@ DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t framed,
   solver.overlapWarningSteps_ = warnings;
   if (!frame.warning.empty())
     solver.warn(source.empty() ? frame.warning : source + ": " + frame.warning);
-  // The wall histories of the walls each particle can reach (a wall it touches is one).
+  // The wall histories of the walls each particle can reach (a wall it touches is one); both
+  // lists are sorted by particle then wall.
   WallContacts& wc = solver.wallContacts_;
-  for (std::size_t c = 0; c < wc.size(); ++c) {
-    const std::size_t at = wc.particle[c] * walls + wc.wall[c];
-    wc.history[c] = wh[at];
-    wc.active[c] = wa[at];
+  const auto key = [](std::uint64_t i, std::uint64_t w) { return i << 32 | w; };
+  for (std::size_t c = 0, k = 0; c < wc.size(); ++c) {
+    const std::uint64_t want = key(wc.particle[c], wc.wall[c]);
+    while (k < saved.particle.size() && key(saved.particle[k], saved.wall[k]) < want)
+      ++k;
+    const bool found = k < saved.particle.size() && key(saved.particle[k], saved.wall[k]) == want;
+    wc.history[c] = found ? saved.history[k] : ContactHistory{};
+    wc.active[c] = found ? saved.active[k] : 0;
   }
   // The saved contacts become the table of the last evaluation, merged into the fresh list
   // (every saved contact must be in it).

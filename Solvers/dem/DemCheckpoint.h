@@ -4,12 +4,15 @@
 //
 // The framing (header, format version, CRC-32 checksums, old files read with a warning) is
 // common/CheckpointFormat.h, kind "DEM"; the solver's in-memory snapshots (DemRun) are framed
-// the same way. The payload, unchanged since format version 1 (whose files are this payload
-// alone): "CKDEMCP1", native byte order (a uint32 1 probes it), the contact law's name and
-// coefficients, the walls, the gravity, the run parameters, the particle count, time and step,
-// the particle arrays (x v ω r m ρ material Id), the accelerations, the active contacts (i, j,
-// history) sorted by (i, j), the wall histories and flags, the count of overlap-warning steps,
-// and the magic again as a trailer (a file cut short is refused). Every count is checked
+// the same way. The payload: "CKDEMCP2", native byte order (a uint32 1 probes it), the contact
+// law's name and coefficients, the walls, the gravity, the run parameters, the particle count,
+// time and step, the particle arrays (x v ω r m ρ material Id), the accelerations, the active
+// contacts (i, j, history) sorted by (i, j), the (particle, wall) pairs within reach (particles,
+// walls, histories, flags) sorted by particle then wall, the count of overlap-warning steps,
+// and the magic again as a trailer (a file cut short is refused). The "CKDEMCP1" payload (the
+// whole of a format-version-1 file, and of version-2 files written before CKDEMCP2) held one
+// wall history and flag for every particle and wall, 405 bytes a particle in a box; it still
+// reads. Every count is checked
 // against the bytes left before anything is allocated. The writing and reading code is
 // DemSolver::writeCheckpoint / readCheckpoint (DemCheckpoint.cpp); a file is written to
 // PATH.part and renamed (common/AtomicWrite.h). A version-1 file's warning goes to the

@@ -3,25 +3,31 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 namespace craterkit {
 
+DemRun::DemRun(const ParticleSet& initial, std::function<ParticleSet()> again,
+               const DemParams& params, double startTime, std::size_t keptStates)
+    : TimeDrivenRun(std::make_unique<DemSolver>(initial, params), keptStates, -1),
+      initial_(std::move(again)), params_(params), startTime_(startTime) {}
+
 DemRun::DemRun(const ParticleSet& initial, const DemParams& params, double startTime,
                std::size_t keptStates)
-    : TimeDrivenRun(std::make_unique<DemSolver>(initial, params), keptStates, -1),
-      initial_(initial), params_(params), startTime_(startTime) {}
+    : DemRun(
+          initial, [initial] { return initial; }, params, startTime, keptStates) {}
 
 const DemSolver& DemRun::advanceTo(double time, const ProgressCallback& progress,
                                    const std::string& checkpointPath, long long checkpointEvery) {
   const double dt = params_.dt;
   const long long target =
       std::max(0LL, static_cast<long long>(std::ceil((time - startTime_) / dt - 1e-9)));
+  if (target != solver_->stepCount())
+    leaving([&] { return solver_->checkpointBytes(); });
   goBackTo(
-      target, solver_->stepCount(), [&] { return std::make_unique<DemSolver>(initial_, params_); },
+      target, solver_->stepCount(),
+      [&] { return std::make_unique<DemSolver>(initial_(), params_); },
       [](const std::string& bytes) {
-        std::istringstream in(bytes);
-        return std::make_unique<DemSolver>(DemSolver::readCheckpoint(in, bytes.size()));
+        return std::make_unique<DemSolver>(DemSolver::fromCheckpointBytes(bytes));
       });
   if (target > solver_->stepCount()) {
     const long long start = solver_->stepCount();
@@ -50,11 +56,7 @@ const DemSolver& DemRun::advanceTo(double time, const ProgressCallback& progress
     if (!checkpointPath.empty())
       checkpointReached(solver_->stepCount());
   }
-  keep(solver_->stepCount(), [&] {
-    std::ostringstream out;
-    solver_->writeCheckpoint(out);
-    return out.str();
-  });
+  standAt(solver_->stepCount());
   return *solver_;
 }
 

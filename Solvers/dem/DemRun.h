@@ -1,9 +1,10 @@
 // A DEM run driven by requested output times, for time-dependent pipelines (the shared
 // protocol is common/TimeDrivenRun.h; positions are step counts, snapshots checkpoint bytes).
 //
-// Holds the initial state, advances the solver to any later time, and keeps serialized
-// snapshots of earlier output times so that a request for an earlier time restarts from
-// the nearest kept snapshot (or from the initial state), never from a stale state.
+// Advances the solver to any later time, and keeps serialized snapshots (checkpoint bytes) of
+// earlier output times so that a request for an earlier time restarts from the nearest kept
+// snapshot (or from the initial state, which it holds or is given again), never from a stale
+// state.
 //
 // With a checkpoint file, the file is written every checkpointEvery steps and at the end of
 // every request, and it is never overwritten by an earlier state: a request for a time before
@@ -15,6 +16,7 @@
 #include "common/TimeDrivenRun.h"
 #include "dem/DemSolver.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,6 +26,12 @@ namespace craterkit {
 class DemRun : public TimeDrivenRun<DemSolver, long long, std::string> {
 public:
   // startTime: simulation time of the initial state; keptStates: snapshots kept in memory.
+  // again() gives the initial state again, for a request before every kept snapshot, so that
+  // the run holds no copy of it (the DEMIntegrator rebuilds it from its input, which the
+  // pipeline holds anyway).
+  DemRun(const ParticleSet& initial, std::function<ParticleSet()> again, const DemParams& params,
+         double startTime, std::size_t keptStates);
+  // The same holding a copy of the initial state.
   DemRun(const ParticleSet& initial, const DemParams& params, double startTime = 0.0,
          std::size_t keptStates = 16);
 
@@ -42,7 +50,7 @@ public:
   double time() const { return startTime_ + solver_->time(); }
 
 private:
-  ParticleSet initial_;
+  std::function<ParticleSet()> initial_;
   DemParams params_;
   double startTime_;
 };

@@ -200,6 +200,7 @@ void DemSolver::prepareForces() {
   shared_.resize(n_);
   contactsOf_.resize(n_, pairs_.size());
   tables_[1 - current_].reserveRows(pairs_.size());
+  growFresh(contactResults_, ContactTable::kResultWords * pairs_.size());
   worstOverlap_ = 0.0;
   movedNext_ = 0.0;
 }
@@ -286,8 +287,9 @@ template <class Law> void DemSolver::forcePhasesWith(const Law& pairLaw, const L
   const FrictionConstants fc(params_.contact);
   const ContactInputs in{state_.position.data(), state_.radius.data(), state_.mass.data(),
                          vPred_.data(), wPred_.data()};
-  const double worst = evaluateContacts(pairLaw, fc, params_.dt, in, tables_[current_],
-                                        tables_[1 - current_], rowBegin, rowEnd);
+  const double worst =
+      evaluateContacts(pairLaw, fc, params_.dt, in, tables_[current_], tables_[1 - current_],
+                       contactResults_.data(), rowBegin, rowEnd);
   chain_.post(me, chainStage_ + 3);
   const double evaluated = seconds() - evaluating;
   const ContactTable& now = tables_[1 - current_];
@@ -320,7 +322,7 @@ template <class Law> void DemSolver::gatherForces(const Law& wallLaw, const Fric
   const double* x = s.position.data();
   const double* r = s.radius.data();
   const double* m = s.mass.data();
-  const double* res = tables_[1 - current_].result.data();
+  const double* res = contactResults_.data();
   constexpr std::size_t R = ContactTable::kResultWords;
   const ParticleContacts& pc = contactsOf_;
   WallContacts& wc = wallContacts_;

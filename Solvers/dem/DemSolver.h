@@ -121,6 +121,9 @@ public:
   void writeCheckpoint(const std::string& path) const;
   static DemSolver readCheckpoint(std::istream& in, std::uint64_t available);
   static DemSolver readCheckpoint(const std::string& path);
+  // The same checkpoint as bytes in memory, exactly sized (DemRun's snapshots), and back.
+  std::string checkpointBytes() const;
+  static DemSolver fromCheckpointBytes(const std::string& bytes);
 
 private:
   struct Restore {};
@@ -176,6 +179,9 @@ private:
   PairList pairs_;         // half Verlet list: particles, contact flags, table rows
   ContactTable tables_[2]; // the contacts of the last force evaluation, and the next
   int current_ = 0;        // tables_[current_] is the last evaluation's
+  // The next table's results (ContactTable::kResultWords a row), read in the step that writes
+  // them: one array for both tables.
+  FreshVector<double> contactResults_;
   WallContacts wallContacts_;
   std::vector<std::uint64_t> wallNear_; // per particle: walls within r + skin at the last build
   ParticleContacts contactsOf_;         // each particle's rows of the new table

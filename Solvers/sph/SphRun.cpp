@@ -14,6 +14,11 @@ SphRun::SphRun(const SphState& initial, const SphParams& params, std::size_t kep
 
 const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress,
                                    const std::string& checkpointPath, long long checkpointEvery) {
+  if (time < solver_->time() || !solver_->reached(time))
+    leaving([&] {
+      return SphKeptState{solver_->state(), solver_->time(), solver_->steps(),
+                          solver_->stableStep()};
+    });
   goBackTo(
       time, solver_->time(), [&] { return std::make_unique<SphSolver>(initial_, params_); },
       [&](const SphKeptState& kept) {
@@ -41,9 +46,7 @@ const SphSolver& SphRun::advanceTo(double time, const ProgressCallback& progress
   if (!checkpointPath.empty() && checkpointEvery > 0 && solver_->steps() != lastCheckpoint &&
       aheadOfCheckpoint(solver_->time()))
     checkpoint();
-  keep(solver_->time(), [&] {
-    return SphKeptState{solver_->state(), solver_->time(), solver_->steps(), solver_->stableStep()};
-  });
+  standAt(solver_->time());
   return *solver_;
 }
 

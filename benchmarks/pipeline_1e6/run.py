@@ -6,6 +6,7 @@ are KiB), and the peak per particle in KiB and in kB of 1000 bytes.
 
     scripts/pvbatch benchmarks/pipeline_1e6/run.py                      # ~10^6 grains
     scripts/pvbatch benchmarks/pipeline_1e6/run.py --particles 100000   # a quick check
+    scripts/pvbatch benchmarks/pipeline_1e6/run.py --particles 1e7      # ~10^7: about 20 GB
 
 Goals (benchmarks/README.md): at most 2 kB a grain end to end (the whole process's peak over the
 particles); no analysis stage (CraterProfile,
@@ -81,15 +82,19 @@ def main(argv):
           f"{os.environ.get('OMP_NUM_THREADS', 'default')} threads, load average "
           f"{os.getloadavg()[0]:.2f}; RSS before {rss0 / 1024:.1f} MiB", flush=True)
     bed = simple.GranularBed(Packing="HCP", Container="Box", BoxSize=box, ParticleRadius=RADIUS,
-                             ParticleDensity=DENSITY)
+                             ParticleDensity=DENSITY, MaxParticles=max(2000000, int(1.1 * args.particles)))
     stage("GranularBed", bed)
     n = bed.GetDataInformation().GetNumberOfPoints()
+    if n == 0:
+        sys.exit("GranularBed made no grains (its error is above)")
     end = (args.steps - 0.5) * STEP  # the first step at or after it: step `steps`
     dem = simple.DEMIntegrator(Input=bed, NormalStiffness=STIFFNESS, TimeStep=STEP,
                                AddImpactor=1, ImpactorRadius=args.impactor_ratio * RADIUS,
                                ImpactorDensity=DENSITY, ImpactSpeed=1.0, EndTime=end,
                                OutputInterval=end)
     stage("DEMIntegrator", dem, end)
+    if dem.FieldData["Step"] is None:
+        sys.exit("DEMIntegrator failed (its error is above)")
     steps = int(dem.FieldData["Step"].GetRange()[0])
     grains = dem.GetDataInformation().GetNumberOfPoints()
     profile = simple.CraterProfile(Input=dem)

@@ -459,6 +459,82 @@ TEST(DemRestart, ResumedRunIsBitIdentical) {
   EXPECT_GT(straight.diagnostics().contacts, 50u);
 }
 
+// The in-memory snapshot (DemRun's kept states) is the checkpoint, byte for byte, and restores
+// the run bit for bit; the wall histories are stored for the (particle, wall) pairs within
+// reach only: a wall no particle reaches adds its own record (type, point, normal, radius: 60
+// bytes) and nothing per particle (one history per particle and wall, the CKDEMCP1 layout,
+// added 81 bytes a particle for it: 405 a particle in a five-walled box).
+TEST(DemRestart, SnapshotIsTheCheckpointAndKeepsOnlyTheWallsWithinReach) {
+  const ParticleSet s = jostledBlock(0.5, 7);
+  const DemParams p = frictionalBox();
+  DemSolver straight(s, p);
+  for (int j = 0; j < 300; ++j)
+    straight.step();
+  std::stringstream file;
+  straight.writeCheckpoint(file);
+  const std::string bytes = straight.checkpointBytes();
+  EXPECT_TRUE(bytes == file.str());
+  DemSolver resumed = DemSolver::fromCheckpointBytes(bytes);
+  for (int j = 0; j < 300; ++j) {
+    straight.step();
+    resumed.step();
+  }
+  EXPECT_EQ(resumed.particles().position, straight.particles().position);
+  EXPECT_EQ(resumed.particles().angularVelocity, straight.particles().angularVelocity);
+
+  DemParams far = p;
+  far.walls.push_back(Wall::plane({0, 0, -1000 * kR}, {0, 0, 1}));
+  DemSolver a(s, p), b(s, far);
+  for (int j = 0; j < 50; ++j) {
+    a.step();
+    b.step();
+  }
+  ASSERT_EQ(a.particles().position, b.particles().position);
+  EXPECT_EQ(b.checkpointBytes().size() - a.checkpointBytes().size(), 60u);
+}
+
+// A requested state is kept when the run leaves it, not when it reaches it (the solver holds
+// it until then): a run asked for one time keeps nothing; asked for a later one, it keeps the
+// first; asked for the first again, it restores it bit for bit from that snapshot.
+TEST(DemRestart, RequestedStateIsKeptOnlyWhenTheRunLeavesIt) {
+  const ParticleSet s = jostledBlock(0.5, 7);
+  const DemParams p = frictionalBox();
+  DemRun run(s, p, 0.0, 16);
+  run.advanceTo(100 * p.dt);
+  const std::vector<double> first = run.solver().particles().position;
+  EXPECT_EQ(run.keptCount(), 0u);
+  run.advanceTo(100 * p.dt); // the same time again: the run does not move
+  EXPECT_EQ(run.keptCount(), 0u);
+  run.advanceTo(200 * p.dt);
+  EXPECT_EQ(run.keptCount(), 1u);
+  run.advanceTo(100 * p.dt);
+  EXPECT_EQ(run.solver().stepCount(), 100);
+  EXPECT_EQ(run.solver().particles().position, first);
+  EXPECT_EQ(run.keptCount(), 2u); // the state at step 200 was kept as the run went back
+}
+
+// A run given the initial state as a function (the DEMIntegrator's, which rebuilds it from its
+// input instead of holding a copy) asks for it only when it goes back before every kept state.
+TEST(DemRestart, GoingBackToTheStartAsksForTheInitialStateAgain) {
+  const ParticleSet s = jostledBlock(0.5, 7);
+  const DemParams p = frictionalBox();
+  int asked = 0;
+  DemRun run(
+      s,
+      [&] {
+        ++asked;
+        return s;
+      },
+      p, 0.0, 0);
+  run.advanceTo(100 * p.dt);
+  const std::vector<double> first = run.solver().particles().position;
+  run.advanceTo(200 * p.dt);
+  EXPECT_EQ(asked, 0);
+  run.advanceTo(100 * p.dt);
+  EXPECT_EQ(asked, 1);
+  EXPECT_EQ(run.solver().particles().position, first);
+}
+
 // A run resumed from its checkpoint file and then asked for an earlier time (a script that
 // walks its output times from the start again) recomputes that time from the initial state
 // and must not overwrite the file with the earlier state; every requested state is written.
