@@ -6,7 +6,8 @@ at run time (lammps_fakes.py) and a deck written by LAMMPSDeckWriter from a smal
     (`lmp -h`): LammpsLacksStyle naming the style and its package, before anything runs;
  3. LAMMPS exiting 1 with an ERROR line: LammpsFailed quoting the line and naming log.lammps;
  4. a run past its time limit: LammpsTimeout naming the limit, back within the limit + 10 s, no
-    rank left running (the stand-in mpirun; Open MPI's mpirun too when installed);
+    rank left running (the stand-in mpirun; Open MPI's mpirun too when installed); and run-lammps
+    itself stopped by TERM before its limit: exit 143, a message, and no rank left running;
  5. a dump cut short (in a frame's atom lines, in the middle of its last line, in a header), or
     a frame short of the deck's: LammpsDumpError naming the file and the frame.
 With LAMMPS installed, the real thing as well: a whole run reads back; a deck with an unknown
@@ -14,6 +15,8 @@ command fails quoting LAMMPS' own ERROR line; a deck that runs too long is stopp
 
 import os
 import shutil
+import signal
+import subprocess
 import sys
 import tempfile
 import time
@@ -23,11 +26,20 @@ from lammps_fakes import ERROR_LINE, Fakes, alive, dump_text, running_in  # noqa
 
 from craterkit import load_plugin  # noqa: E402
 from craterkit.lammps import (LammpsDumpError, LammpsFailed, LammpsLacksStyle, LammpsNotFound,  # noqa: E402
-                              LammpsTimeout, check_lammps, lammps_available, read_lammps_dump, run_lammps,
-                              write_lammps_deck)
+                              LammpsTimeout, RUN_LAMMPS, _child_environment, check_lammps, lammps_available,
+                              read_lammps_dump, run_lammps, write_lammps_deck)
 from craterkit.testing import Checker  # noqa: E402
 
 simple = load_plugin()
+
+
+def started_ranks(fakes):
+    """The pids the stand-in lmp recorded so far (without forgetting them, as fakes.pids() does)."""
+    path = os.path.join(fakes.folder, "pids")
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return f.read().split()
 t = Checker("test_lammps_failures")
 folder = tempfile.mkdtemp(prefix="craterkit-lammps-failures-")
 real_lammps = lammps_available() and "LMP" not in os.environ and "MPIRUN" not in os.environ
@@ -152,6 +164,24 @@ for label, mpirun in (("the stand-in mpirun", fakes.mpirun), ("Open MPI's mpirun
     t.check(len(pids) == 2, f"4. {label}: {len(pids)} ranks started, 2 expected")
     t.check(not any(alive(p) for p in pids), f"4. {label}: ranks {[p for p in pids if alive(p)]} still run")
     print(f"4. {label}: stopped after {seconds:.1f} s, ranks {pids} gone", flush=True)
+    # run-lammps itself stopped (a ctest timeout, Ctrl-C) before its limit: it stops the ranks too.
+    fakes.pids()
+    child = subprocess.Popen([RUN_LAMMPS, deck, "2"], env=_child_environment(None), stdin=subprocess.DEVNULL,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    for _ in range(100):  # until both ranks have started
+        if len(started_ranks(fakes)) == 2:
+            break
+        time.sleep(0.1)
+    child.send_signal(signal.SIGTERM)
+    stderr = child.communicate(timeout=30)[1]
+    pids = fakes.pids()
+    t.check(child.returncode == 128 + signal.SIGTERM,
+            f"4. {label}, run-lammps stopped by TERM: exit {child.returncode}, {128 + signal.SIGTERM} expected")
+    t.check("stopped by SIGTERM" in stderr and "2 MPI ranks were stopped too" in stderr,
+            f"4. {label}, run-lammps stopped by TERM: its message: {stderr.strip()}")
+    t.check(len(pids) == 2 and not any(alive(p) for p in pids),
+            f"4. {label}, run-lammps stopped by TERM: ranks {pids}, still running {[p for p in pids if alive(p)]}")
+    print(f"4. {label}: run-lammps stopped by TERM, ranks {pids} gone", flush=True)
 fakes.use()
 
 # 5. Dumps cut short: the reader's refusal, or the file's last line, named with the frame.
