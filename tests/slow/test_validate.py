@@ -46,11 +46,11 @@ class CrashedRunFails(unittest.TestCase):
             write_summary(old, [("RCP", 30000, report(14.5, 2.3))])  # would pass every row
             results = os.path.join(build, "validation.md")
             env = dict(os.environ, CRATERKIT_BUILD_DIR=os.path.join(build, "no-plugin-here"))
-            p = subprocess.run([sys.executable, os.path.join(HERE, "validate.py"), "sci_crater_ryugu",
+            p = subprocess.run([sys.executable, os.path.join(HERE, "validate.py"), "sci_ryugu_run",
                                 "--build", build, "--results", results], env=env, text=True,
                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=120)
             self.assertNotEqual(p.returncode, 0, p.stdout)
-            self.assertIn("FAIL: sci_crater_ryugu: the run", p.stdout)
+            self.assertIn("FAIL: sci_ryugu_run: the run", p.stdout)
             self.assertIn("exited with 3", p.stdout)
             self.assertFalse(os.path.exists(old), "the earlier run's summary must be gone")
             with open(results) as f:
@@ -107,6 +107,12 @@ class RowsThatCanFail(unittest.TestCase):
         for hcp, ok in ((report(10.3, 2.66), True), (report(14.0, 5.0), False)):
             validate.sci_run = lambda *a, hcp=hcp: {("RCP", 30000): report(13.8, 4.39), ("HCP", 30000): hcp}
             self.assertEqual(self.verdicts(validate.rcp_vs_hcp), [ok, ok])
+
+    def test_sci_crater_ryugu_reads_the_shared_run(self):
+        validate.ryugu_report = lambda *a: report(14.0, 2.5)
+        self.assertEqual(self.verdicts(validate.sci_crater_ryugu), [True, True, True])
+        validate.ryugu_report = lambda *a: report(14.0, 4.0)  # too deep: the depth row fails alone
+        self.assertEqual(self.verdicts(validate.sci_crater_ryugu), [True, False, True])
 
     def test_pi_scaling_against_each_crater_own_d_pi(self):
         d_pi = validate.own_pi_scaling_diameter(report(1.0, 0.2, gravity=1000.0))
