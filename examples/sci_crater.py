@@ -75,7 +75,8 @@ def parse_args(argv):
                         "Froude-scaled to the run's gravity and predicted crater")
     g = p.add_argument_group("DEM stage")
     g.add_argument("--particles", type=int, default=6000, help="DEM bed particles (sets their radius)")
-    g.add_argument("--packing", choices=["RCP", "HCP"], default="RCP")
+    g.add_argument("--packing", choices=["RCP", "HCP", "Loose"], default="RCP",
+                   help="the bed: RCP (settled random), HCP (a lattice) or Loose (poured with high friction, the loosest)")
     g.add_argument("--rolling-friction", type=float, default=0.35,
                    help="the DEM stage's rolling friction (DEMIntegrator's RollingFriction; 0.35 with the "
                         "other defaults gives the 30 degree heap); the bed settles with the defaults")

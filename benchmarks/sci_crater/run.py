@@ -37,7 +37,7 @@ def main(argv):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--gravity", type=float, default=1000.0)
     p.add_argument("--particles", type=int, nargs="+", default=[30000, 100000])
-    p.add_argument("--packings", nargs="+", default=["RCP", "HCP"], choices=["RCP", "HCP"])
+    p.add_argument("--packings", nargs="+", default=["RCP", "HCP"], choices=["RCP", "HCP", "Loose"])
     p.add_argument("--sph-state", default="", help="a saved SPH state to hand off (default: run the SPH stage once)")
     p.add_argument("--resume", action="store_true")
     p.add_argument("--output", default=os.path.join(ROOT, "build", "benchmarks", "sci_crater"))

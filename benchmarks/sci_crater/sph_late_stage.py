@@ -16,6 +16,7 @@ import time
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from craterkit import fetch, fetch_stage, field_value, impactor_depth, load_plugin, sci  # noqa: E402
@@ -42,6 +43,8 @@ def main():
     p.add_argument("--end-time", type=float, default=0.3, help="s")
     p.add_argument("--interval", type=float, default=0.02, help="s between measurements")
     p.add_argument("--slow", type=float, default=5.0, help="m/s; the kinetic energy of material slower than this is printed")
+    p.add_argument("--save", default="",
+                   help="write the last output here (.vtp), a state examples/sci_crater.py --sph-state hands off")
     p.add_argument("--set", action="append", default=[], metavar="PROPERTY=VALUE",
                    help="any other SPHImpact property, e.g. --set FrictionAngle=25 --set TargetPorosity=0.4")
     args = p.parse_args()
@@ -50,10 +53,12 @@ def main():
         key, sep, value = item.partition("=")
         if not sep:
             p.error(f"--set {item}: expected PROPERTY=VALUE")
-        try:
-            extra[key] = float(value)
-        except ValueError:
-            extra[key] = value  # a string property such as MaterialDirectory
+        for kind in (int, float, str):  # BlockStepLevels=7 is an integer property
+            try:
+                extra[key] = kind(value)  # str: a string property such as MaterialDirectory
+                break
+            except ValueError:
+                continue
 
     simple = load_plugin()
     sc = sci.scales(args.gravity, args.impactor_mass, args.impact_speed, args.impactor_material, "regolith",
@@ -89,6 +94,13 @@ def main():
         say(f"t = {row[0]:.3f} s  step {row[1]:6d}  D = {row[2]:.3f} m ({row[2] / d_pi:.2f} of pi-scaling)  "
             f"depth {row[3]:.3f} m  impactor {row[7]:.3f} m deep  rim diameter {row[4]:.3f} m  slow KE {row[5]:.3g} J  {row[6]:.0f} s")
     last = rows[-1]
+    if args.save:
+        writer = vtkXMLPolyDataWriter()
+        writer.SetFileName(args.save)
+        writer.SetInputData(data)
+        if not writer.Write():
+            sys.exit(f"--save {args.save}: could not write")
+        say(f"saved the state at t = {last[0]:g} s to {args.save}")
     say(f"\n{data.GetNumberOfPoints()} SPH particles; at {last[0]:.3f} s: D = {last[2]:.3f} m = "
         f"{last[2] / d_pi:.2f} x pi-scaling ({d_pi:.3f} m), depth {last[3]:.3f} m, depth/D {last[3] / last[2] if last[2] > 0 else float('nan'):.2f}, "
         f"impactor's centre of mass {last[7]:.3f} m deep; "
