@@ -93,6 +93,7 @@ void vtkCraterKitSPHImpact::BuildRun() {
   p.courant = this->CourantNumber;
   p.minTimeStep = this->MinTimeStep;
   p.lateStageTime = this->LateStageTime;
+  p.lateStageStopMaterial = this->StopImpactorAtLateStage ? 0 : -1; // material 0: the impactor
   p.domainRadius = this->DomainRadius;
   p.lateStageSoundSpeed = this->LateStageSoundSpeed;
   p.blockStepLevels = this->BlockStepLevels;
@@ -163,9 +164,9 @@ void vtkCraterKitSPHImpact::PrintSelf(ostream& os, vtkIndent indent) {
       this->EndTime, "OutputInterval", this->OutputInterval, "Kernel", this->Kernel,
       "ArtificialViscosityAlpha", this->ArtificialViscosityAlpha, "ArtificialViscosityBeta",
       this->ArtificialViscosityBeta, "XSPH", this->XSPH, "CourantNumber", this->CourantNumber,
-      "MinTimeStep", this->MinTimeStep, "LateStageTime", this->LateStageTime, "DomainRadius",
-      this->DomainRadius, "LateStageSoundSpeed", this->LateStageSoundSpeed, "BlockStepLevels",
-      this->BlockStepLevels, "CheckpointFile", this->CheckpointFile, "CheckpointInterval",
-      this->CheckpointInterval, "ResumeFromCheckpoint", this->ResumeFromCheckpoint, "KeptStates",
-      this->KeptStates);
+      "MinTimeStep", this->MinTimeStep, "LateStageTime", this->LateStageTime,
+      "StopImpactorAtLateStage", this->StopImpactorAtLateStage, "DomainRadius", this->DomainRadius,
+      "LateStageSoundSpeed", this->LateStageSoundSpeed, "BlockStepLevels", this->BlockStepLevels,
+      "CheckpointFile", this->CheckpointFile, "CheckpointInterval", this->CheckpointInterval,
+      "ResumeFromCheckpoint", this->ResumeFromCheckpoint, "KeptStates", this->KeptStates);
 }

@@ -94,6 +94,9 @@ public:
   vtkGetMacro(DomainRadius, double);
   vtkSetMacro(LateStageTime, double);
   vtkGetMacro(LateStageTime, double);
+  vtkSetMacro(StopImpactorAtLateStage, bool);
+  vtkGetMacro(StopImpactorAtLateStage, bool);
+  vtkBooleanMacro(StopImpactorAtLateStage, bool);
   vtkSetMacro(LateStageSoundSpeed, double);
   vtkGetMacro(LateStageSoundSpeed, double);
   vtkSetMacro(BlockStepLevels, int);
@@ -147,6 +150,7 @@ private:
   double CourantNumber = 0.3;
   double MinTimeStep = 1e-12;
   double LateStageTime = -1.0;
+  bool StopImpactorAtLateStage = false;
   double DomainRadius = 0.0;
   double LateStageSoundSpeed = 100.0;
   int BlockStepLevels = 0;

@@ -59,6 +59,9 @@ def parse_args(argv):
     g.add_argument("--late-stage-time", type=float, default=1e-3,
                    help="s; from then on the SPH solids use the late-stage scheme (a soft linear equation "
                         "of state, long steps: SPHImpact's LateStageTime); negative: never")
+    g.add_argument("--stop-impactor", action="store_true",
+                   help="at the late-stage switch, stop the impactor in the target's flow (SPHImpact's "
+                        "StopImpactorAtLateStage): the soft late-stage target cannot stop a dense impactor")
     g.add_argument("--sph-block-steps", type=int, default=0,
                    help="individual power-of-two SPH time steps in the late stage, up to 2^L times the smallest "
                         "(SPHImpact's BlockStepLevels); 0: one step for all")

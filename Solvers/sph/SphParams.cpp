@@ -3,6 +3,7 @@
 #include "common/Error.h"
 
 #include <cmath>
+#include <string>
 
 namespace craterkit {
 
@@ -45,6 +46,9 @@ void SphParams::validate() const {
     throw InputError("SPH: the late-stage time must be finite (negative: no late stage)");
   if (lateStageTime >= 0.0 && !(lateStageSoundSpeed > 0.0 && std::isfinite(lateStageSoundSpeed)))
     throw InputError("SPH: the late-stage sound speed must be positive");
+  if (lateStageStopMaterial < -1 || lateStageStopMaterial >= static_cast<int>(materials.size()))
+    throw InputError("SPH: the material stopped at the late-stage switch must be one of the " +
+                     std::to_string(materials.size()) + " materials (-1: none)");
   if (!(overburdenDensity >= 0.0) || !std::isfinite(overburdenDensity) ||
       !std::isfinite(overburdenSurface))
     throw InputError("SPH: the overburden density must be finite and not negative (0: none) and "

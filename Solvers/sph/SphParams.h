@@ -51,6 +51,10 @@ struct SphParams {
   // unchanged); the distention is frozen. The Courant step grows by about the ratio of the old and
   // new sound speeds, so a run can follow the slow, gravity-driven crater growth after the shock.
   double lateStageTime = -1.0; // s
+  // At the switch, each particle of this material (-1: none; the impact set-up's impactor is 0)
+  // is stopped in the flow of the other materials' particles within its support, momentum and
+  // energy kept (sph/ImpactorStop.h).
+  int lateStageStopMaterial = -1;
   // Particles farther than domainRadius from domainCentre (0: no limit) have left the SPH
   // domain: they get no neighbours and fly ballistically (under gravity) until they return,
   // so fast ejecta neither widen the neighbour lists nor force a new list every step.

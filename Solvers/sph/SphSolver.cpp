@@ -1,4 +1,5 @@
 #include "sph/SphSolver.h"
+#include "sph/ImpactorStop.h"
 
 #include "common/Error.h"
 #include "common/SimdClones.h"
@@ -461,6 +462,12 @@ std::vector<double> SphSolver::switchMaterials() {
 }
 
 void SphSolver::enterLateStage() {
+  if (par_.lateStageStopMaterial >= 0) {
+    std::vector<bool> rigid;
+    for (const Material& m : par_.materials)
+      rigid.push_back(m.rigid);
+    stopInFlow(s_, par_.lateStageStopMaterial, rigid);
+  }
   const std::vector<double> earlyK = earlyBulkModuli(par_.materials);
   const std::vector<double> scale = switchMaterials();
   keepOverburden(s_, par_, earlyK);

@@ -157,6 +157,7 @@ def sph_stage(simple, args, sc, output_dir):
                            SurfaceGravity=args.gravity, ParticlesAcrossImpactor=args.sph_resolution,
                            TargetRadius=sc.sph_target_radius, TargetCoarsening=args.sph_coarsening,
                            TargetContainer=1, LateStageTime=args.late_stage_time,
+                           StopImpactorAtLateStage=1 if getattr(args, "stop_impactor", False) else 0,
                            LateStageSoundSpeed=sc.late_stage_sound_speed, BlockStepLevels=args.sph_block_steps,
                            DomainRadius=args.sph_domain_radius, EndTime=t, OutputInterval=t,
                            CheckpointFile=checkpoint, CheckpointInterval=200, ResumeFromCheckpoint=1 if resume else 0)
@@ -192,7 +193,9 @@ def saved_sph_state(simple, args, sc, path):
                              ("FrictionAngle", args.friction_angle, "friction angle"),
                              ("Cohesion", args.cohesion, "target cohesion"),
                              ("TargetRadius", sc.sph_target_radius, "SPH target radius"),
-                             ("TargetCoarsening", args.sph_coarsening, "SPH target coarsening")):
+                             ("TargetCoarsening", args.sph_coarsening, "SPH target coarsening"),
+                             ("StopImpactorAtLateStage", 1.0 if getattr(args, "stop_impactor", False) else 0.0,
+                              "impactor stopped at the late-stage switch (--stop-impactor)")):
         theirs = field_value(data, name)
         if theirs is not None and abs(theirs - ours) > 1e-6 * max(abs(ours), 1e-12):
             sys.exit(f"--sph-state {path}: its {what} is {theirs:g}, this run's {ours:g}")

@@ -2,6 +2,7 @@
 // resume, and the errors a user gets for bad set-ups.
 #include "common/Error.h"
 #include "sph/ImpactSetup.h"
+#include "sph/ImpactorStop.h"
 #include "sph/SphRun.h"
 
 #include <gtest/gtest.h>
@@ -651,4 +652,51 @@ TEST(SphImpact, GradedTargetsOfDifferentCoarseningsShareTheirInnerShells) {
     EXPECT_NEAR(shells[k].second, expected, 0.01 * expected) << "shell at " << shells[k].first;
   }
   EXPECT_NEAR(shells.back().second, 10.0 * dx, 0.01 * dx);
+}
+
+// StopImpactorAtLateStage (sph/ImpactorStop.h): at the switch each impactor particle and the
+// target particles within its support take their common velocity. Taken 20 µs after contact,
+// while the impactor, half embedded, still carries most of its momentum: the impactor's momentum
+// falls (its groups hold the slower target), total momentum and total (kinetic + internal)
+// energy are kept to round-off, and the solver applies it at the switch (the impactor carries
+// less momentum afterwards than in a free run).
+TEST(SphImpact, ImpactorStoppedAtTheSwitchKeepsMomentumAndEnergy) {
+  const double t1 = 2e-5, t2 = 3e-5;
+  SphImpactProblem prob = switchingImpact(t1);
+  SphRun run(prob.state, prob.params);
+  run.advanceTo(t1); // stops where the switch comes at the start of the next step
+  SphState s = run.solver().state();
+  const auto impactorMomentum = [&](const SphState& st) {
+    double p[3] = {0, 0, 0};
+    for (std::size_t i = 0; i < prob.impactorParticles; ++i)
+      for (int k = 0; k < 3; ++k)
+        p[k] += st.mass[i] * st.v[3 * i + k];
+    return std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+  };
+  double p0[3], p1[3];
+  totalMomentum(s, p0);
+  const double e0 = kineticEnergy(s) + internalEnergy(s), before = impactorMomentum(s);
+  std::vector<bool> rigid;
+  for (const Material& m : prob.params.materials)
+    rigid.push_back(m.rigid);
+  const double converted = stopInFlow(s, 0, rigid);
+  totalMomentum(s, p1);
+  const double e1 = kineticEnergy(s) + internalEnergy(s), after = impactorMomentum(s);
+  const double scale = std::sqrt(p0[0] * p0[0] + p0[1] * p0[1] + p0[2] * p0[2]);
+  std::printf("impactor momentum %.4g -> %.4g kg m/s; %.4g J of %.4g J made internal; "
+              "|dE|/E %.2e\n",
+              before, after, converted, e0, std::abs(e1 - e0) / e0);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(p1[k], p0[k], 1e-12 * scale);
+  EXPECT_NEAR(e1, e0, 1e-12 * e0);
+  EXPECT_GT(converted, 0.0);
+  EXPECT_LT(after, before);
+
+  prob.params.lateStageStopMaterial = 0;
+  SphRun stopped(prob.state, prob.params);
+  stopped.advanceTo(t2);
+  run.advanceTo(t2);
+  EXPECT_LT(impactorMomentum(stopped.solver().state()), impactorMomentum(run.solver().state()));
+  prob.params.lateStageStopMaterial = static_cast<int>(prob.params.materials.size());
+  EXPECT_THROW(prob.params.validate(), InputError);
 }

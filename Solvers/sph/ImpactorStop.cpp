@@ -1,0 +1,51 @@
+#include "sph/ImpactorStop.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace craterkit {
+
+double stopInFlow(SphState& s, int material, const std::vector<bool>& rigid) {
+  const std::size_t n = s.size();
+  double converted = 0.0;
+  std::vector<std::size_t> group;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s.material[i] != material)
+      continue;
+    group.assign(1, i);
+    const double h2 = s.h[i] * s.h[i];
+    for (std::size_t j = 0; j < n; ++j) {
+      const int m = s.material[j];
+      if (m == material || rigid[static_cast<std::size_t>(m)])
+        continue;
+      double d2 = 0.0;
+      for (int k = 0; k < 3; ++k)
+        d2 += (s.x[3 * j + k] - s.x[3 * i + k]) * (s.x[3 * j + k] - s.x[3 * i + k]);
+      if (d2 < h2)
+        group.push_back(j);
+    }
+    if (group.size() == 1)
+      continue;
+    double mass = 0.0, p[3] = {0, 0, 0}, kinetic = 0.0;
+    for (std::size_t j : group) {
+      mass += s.mass[j];
+      for (int k = 0; k < 3; ++k) {
+        p[k] += s.mass[j] * s.v[3 * j + k];
+        kinetic += 0.5 * s.mass[j] * s.v[3 * j + k] * s.v[3 * j + k];
+      }
+    }
+    double after = 0.0;
+    for (int k = 0; k < 3; ++k)
+      after += 0.5 * p[k] * p[k] / mass;
+    const double heat = (kinetic - after) / mass; // J/kg, the same for every particle of the group
+    for (std::size_t j : group) {
+      for (int k = 0; k < 3; ++k)
+        s.v[3 * j + k] = p[k] / mass;
+      s.u[j] += heat;
+    }
+    converted += kinetic - after;
+  }
+  return converted;
+}
+
+} // namespace craterkit
