@@ -444,44 +444,34 @@ TEST(DemRestart, ResumedRunIsBitIdentical) {
     straight.step();
   std::stringstream checkpoint;
   straight.writeCheckpoint(checkpoint);
+  const std::string snapshot = straight.checkpointBytes();
   for (int j = 0; j < 500; ++j)
     straight.step();
 
   const std::string bytes = checkpoint.str();
   std::istringstream in(bytes);
-  DemSolver resumed = DemSolver::readCheckpoint(in, bytes.size());
-  EXPECT_EQ(resumed.stepCount(), 300);
-  for (int j = 0; j < 500; ++j)
-    resumed.step();
-  EXPECT_EQ(resumed.particles().position, straight.particles().position);
-  EXPECT_EQ(resumed.particles().velocity, straight.particles().velocity);
-  EXPECT_EQ(resumed.particles().angularVelocity, straight.particles().angularVelocity);
+  // From the file's bytes, and from the in-memory snapshot (DemRun's kept states), which must
+  // be the same bytes.
+  for (DemSolver resumed :
+       {DemSolver::readCheckpoint(in, bytes.size()), DemSolver::fromCheckpointBytes(snapshot)}) {
+    EXPECT_EQ(resumed.stepCount(), 300);
+    for (int j = 0; j < 500; ++j)
+      resumed.step();
+    EXPECT_EQ(resumed.particles().position, straight.particles().position);
+    EXPECT_EQ(resumed.particles().velocity, straight.particles().velocity);
+    EXPECT_EQ(resumed.particles().angularVelocity, straight.particles().angularVelocity);
+  }
+  EXPECT_TRUE(snapshot == bytes);
   EXPECT_GT(straight.diagnostics().contacts, 50u);
 }
 
-// The in-memory snapshot (DemRun's kept states) is the checkpoint, byte for byte, and restores
-// the run bit for bit; the wall histories are stored for the (particle, wall) pairs within
-// reach only: a wall no particle reaches adds its own record (type, point, normal, radius: 60
-// bytes) and nothing per particle (one history per particle and wall, the CKDEMCP1 layout,
-// added 81 bytes a particle for it: 405 a particle in a five-walled box).
-TEST(DemRestart, SnapshotIsTheCheckpointAndKeepsOnlyTheWallsWithinReach) {
+// The wall histories are stored for the (particle, wall) pairs within reach only: a wall no
+// particle reaches adds its own record (type, point, normal, radius: 60 bytes) and nothing per
+// particle (one history per particle and wall, the CKDEMCP1 layout, added 81 bytes a particle
+// for it: 405 a particle in a five-walled box).
+TEST(DemRestart, CheckpointKeepsOnlyTheWallsWithinReach) {
   const ParticleSet s = jostledBlock(0.5, 7);
   const DemParams p = frictionalBox();
-  DemSolver straight(s, p);
-  for (int j = 0; j < 300; ++j)
-    straight.step();
-  std::stringstream file;
-  straight.writeCheckpoint(file);
-  const std::string bytes = straight.checkpointBytes();
-  EXPECT_TRUE(bytes == file.str());
-  DemSolver resumed = DemSolver::fromCheckpointBytes(bytes);
-  for (int j = 0; j < 300; ++j) {
-    straight.step();
-    resumed.step();
-  }
-  EXPECT_EQ(resumed.particles().position, straight.particles().position);
-  EXPECT_EQ(resumed.particles().angularVelocity, straight.particles().angularVelocity);
-
   DemParams far = p;
   far.walls.push_back(Wall::plane({0, 0, -1000 * kR}, {0, 0, 1}));
   DemSolver a(s, p), b(s, far);
