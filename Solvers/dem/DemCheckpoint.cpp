@@ -85,6 +85,11 @@ struct Reader {
   }
 };
 
+// The order of (particle, wall) pairs: by particle, then wall.
+std::uint64_t wallKey(std::uint32_t particle, std::uint32_t wall) {
+  return static_cast<std::uint64_t>(particle) << 32 | wall;
+}
+
 // The saved (particle, wall) histories, sorted by particle then wall.
 struct SavedWallContacts {
   std::vector<std::uint32_t> particle, wall;
@@ -109,8 +114,7 @@ SavedWallContacts readWallContacts(Reader& r, std::uint64_t n, std::uint64_t wal
   s.active = r.vec<char>("wall contacts", s.particle.size());
   for (std::size_t k = 0; k < s.particle.size(); ++k)
     if (s.particle[k] >= n || s.wall[k] >= walls ||
-        (k > 0 && (static_cast<std::uint64_t>(s.particle[k - 1]) << 32 | s.wall[k - 1]) >=
-                      (static_cast<std::uint64_t>(s.particle[k]) << 32 | s.wall[k])))
+        (k > 0 && wallKey(s.particle[k - 1], s.wall[k - 1]) >= wallKey(s.particle[k], s.wall[k])))
       throw InputError("checkpoint corrupt: wall contact list out of order");
   return s;
 }
@@ -308,12 +312,12 @@ DemSolver DemSolver::readCheckpoint(std::istream& in, std::uint64_t framed,
   // The wall histories of the walls each particle can reach (a wall it touches is one); both
   // lists are sorted by particle then wall.
   WallContacts& wc = solver.wallContacts_;
-  const auto key = [](std::uint64_t i, std::uint64_t w) { return i << 32 | w; };
   for (std::size_t c = 0, k = 0; c < wc.size(); ++c) {
-    const std::uint64_t want = key(wc.particle[c], wc.wall[c]);
-    while (k < saved.particle.size() && key(saved.particle[k], saved.wall[k]) < want)
+    const std::uint64_t want = wallKey(wc.particle[c], wc.wall[c]);
+    while (k < saved.particle.size() && wallKey(saved.particle[k], saved.wall[k]) < want)
       ++k;
-    const bool found = k < saved.particle.size() && key(saved.particle[k], saved.wall[k]) == want;
+    const bool found =
+        k < saved.particle.size() && wallKey(saved.particle[k], saved.wall[k]) == want;
     wc.history[c] = found ? saved.history[k] : ContactHistory{};
     wc.active[c] = found ? saved.active[k] : 0;
   }
