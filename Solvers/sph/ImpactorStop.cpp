@@ -1,23 +1,51 @@
 #include "sph/ImpactorStop.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
 namespace craterkit {
 
+namespace {
+
+// The particles of other, non-rigid materials within reach of MATERIAL's: inside the box of its
+// particles widened by their largest support.
+std::vector<std::size_t> candidates(const SphState& s, int material,
+                                    const std::vector<bool>& rigid) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.material[i] == material)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], s.x[3 * i + k] - s.h[i]);
+        hi[k] = std::max(hi[k], s.x[3 * i + k] + s.h[i]);
+      }
+  std::vector<std::size_t> near;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const int m = s.material[j];
+    if (m == material || rigid[static_cast<std::size_t>(m)])
+      continue;
+    bool inside = true;
+    for (int k = 0; k < 3; ++k)
+      inside = inside && s.x[3 * j + k] >= lo[k] && s.x[3 * j + k] <= hi[k];
+    if (inside)
+      near.push_back(j);
+  }
+  return near;
+}
+
+} // namespace
+
 double stopInFlow(SphState& s, int material, const std::vector<bool>& rigid) {
-  const std::size_t n = s.size();
+  const std::vector<std::size_t> near = candidates(s, material, rigid);
   double converted = 0.0;
   std::vector<std::size_t> group;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < s.size(); ++i) {
     if (s.material[i] != material)
       continue;
     group.assign(1, i);
     const double h2 = s.h[i] * s.h[i];
-    for (std::size_t j = 0; j < n; ++j) {
-      const int m = s.material[j];
-      if (m == material || rigid[static_cast<std::size_t>(m)])
-        continue;
+    for (std::size_t j : near) {
       double d2 = 0.0;
       for (int k = 0; k < 3; ++k)
         d2 += (s.x[3 * j + k] - s.x[3 * i + k]) * (s.x[3 * j + k] - s.x[3 * i + k]);
