@@ -93,7 +93,7 @@ void vtkCraterKitSPHImpact::BuildRun() {
   p.courant = this->CourantNumber;
   p.minTimeStep = this->MinTimeStep;
   p.lateStageTime = this->LateStageTime;
-  p.lateStageStopMaterial = this->StopImpactorAtLateStage ? 0 : -1; // material 0: the impactor
+  p.lateStageStopMaterial = this->StopImpactorAtLateStage ? kImpactorMaterial : -1;
   p.domainRadius = this->DomainRadius;
   p.lateStageSoundSpeed = this->LateStageSoundSpeed;
   p.blockStepLevels = this->BlockStepLevels;

@@ -49,6 +49,10 @@ struct SphImpactSetup {
   void validate() const;
 };
 
+// The impactor's index in SphImpactProblem::params.materials (the target's is 1, the
+// container's 2): the material StopImpactorAtLateStage stops.
+constexpr int kImpactorMaterial = 0;
+
 struct SphImpactProblem {
   SphState state;
   SphParams params;                   // materials 0: impactor, 1: target; gravity set

@@ -12,7 +12,7 @@ namespace {
 // The particles of other, non-rigid materials within reach of MATERIAL's: inside the box of its
 // particles widened by their largest support.
 std::vector<std::size_t> candidates(const SphState& s, int material,
-                                    const std::vector<bool>& rigid) {
+                                    const std::vector<Material>& materials) {
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (std::size_t i = 0; i < s.size(); ++i)
     if (s.material[i] == material)
@@ -23,7 +23,7 @@ std::vector<std::size_t> candidates(const SphState& s, int material,
   std::vector<std::size_t> near;
   for (std::size_t j = 0; j < s.size(); ++j) {
     const int m = s.material[j];
-    if (m == material || rigid[static_cast<std::size_t>(m)])
+    if (m == material || materials[static_cast<std::size_t>(m)].rigid)
       continue;
     bool inside = true;
     for (int k = 0; k < 3; ++k)
@@ -36,8 +36,8 @@ std::vector<std::size_t> candidates(const SphState& s, int material,
 
 } // namespace
 
-double stopInFlow(SphState& s, int material, const std::vector<bool>& rigid) {
-  const std::vector<std::size_t> near = candidates(s, material, rigid);
+double stopInFlow(SphState& s, int material, const std::vector<Material>& materials) {
+  const std::vector<std::size_t> near = candidates(s, material, materials);
   double converted = 0.0;
   std::vector<std::size_t> group;
   for (std::size_t i = 0; i < s.size(); ++i) {

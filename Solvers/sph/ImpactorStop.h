@@ -15,15 +15,16 @@
 // each with its neighbours as they stand after the earlier ones.
 #pragma once
 
+#include "sph/Material.h"
 #include "sph/SphState.h"
 
 #include <vector>
 
 namespace craterkit {
 
-// Stops each particle of MATERIAL in the flow of the particles of other materials within its
-// support (rigid ones excepted: RIGID[m] for material m). Returns the kinetic energy turned into
+// Stops each particle of MATERIAL in the flow of the particles of the other materials within its
+// support (rigid ones, such as the container, excepted). Returns the kinetic energy turned into
 // internal energy (J); 0 if no particle of the material has such neighbours.
-double stopInFlow(SphState& s, int material, const std::vector<bool>& rigid);
+double stopInFlow(SphState& s, int material, const std::vector<Material>& materials);
 
 } // namespace craterkit

@@ -462,12 +462,8 @@ std::vector<double> SphSolver::switchMaterials() {
 }
 
 void SphSolver::enterLateStage() {
-  if (par_.lateStageStopMaterial >= 0) {
-    std::vector<bool> rigid;
-    for (const Material& m : par_.materials)
-      rigid.push_back(m.rigid);
-    stopInFlow(s_, par_.lateStageStopMaterial, rigid);
-  }
+  if (par_.lateStageStopMaterial >= 0)
+    stopInFlow(s_, par_.lateStageStopMaterial, par_.materials);
   const std::vector<double> earlyK = earlyBulkModuli(par_.materials);
   const std::vector<double> scale = switchMaterials();
   keepOverburden(s_, par_, earlyK);

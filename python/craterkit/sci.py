@@ -157,7 +157,7 @@ def sph_stage(simple, args, sc, output_dir):
                            SurfaceGravity=args.gravity, ParticlesAcrossImpactor=args.sph_resolution,
                            TargetRadius=sc.sph_target_radius, TargetCoarsening=args.sph_coarsening,
                            TargetContainer=1, LateStageTime=args.late_stage_time,
-                           StopImpactorAtLateStage=1 if getattr(args, "stop_impactor", False) else 0,
+                           StopImpactorAtLateStage=1 if args.stop_impactor else 0,
                            LateStageSoundSpeed=sc.late_stage_sound_speed, BlockStepLevels=args.sph_block_steps,
                            DomainRadius=args.sph_domain_radius, EndTime=t, OutputInterval=t,
                            CheckpointFile=checkpoint, CheckpointInterval=200, ResumeFromCheckpoint=1 if resume else 0)
@@ -194,7 +194,7 @@ def saved_sph_state(simple, args, sc, path):
                              ("Cohesion", args.cohesion, "target cohesion"),
                              ("TargetRadius", sc.sph_target_radius, "SPH target radius"),
                              ("TargetCoarsening", args.sph_coarsening, "SPH target coarsening"),
-                             ("StopImpactorAtLateStage", 1.0 if getattr(args, "stop_impactor", False) else 0.0,
+                             ("StopImpactorAtLateStage", 1.0 if args.stop_impactor else 0.0,
                               "impactor stopped at the late-stage switch (--stop-impactor)")):
         theirs = field_value(data, name)
         if theirs is not None and abs(theirs - ours) > 1e-6 * max(abs(ours), 1e-12):

@@ -676,10 +676,7 @@ TEST(SphImpact, ImpactorStoppedAtTheSwitchKeepsMomentumAndEnergy) {
   double p0[3], p1[3];
   totalMomentum(s, p0);
   const double e0 = kineticEnergy(s) + internalEnergy(s), before = impactorMomentum(s);
-  std::vector<bool> rigid;
-  for (const Material& m : prob.params.materials)
-    rigid.push_back(m.rigid);
-  const double converted = stopInFlow(s, 0, rigid);
+  const double converted = stopInFlow(s, 0, prob.params.materials);
   totalMomentum(s, p1);
   const double e1 = kineticEnergy(s) + internalEnergy(s), after = impactorMomentum(s);
   const double scale = std::sqrt(p0[0] * p0[0] + p0[1] * p0[1] + p0[2] * p0[2]);
