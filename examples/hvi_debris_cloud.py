@@ -10,7 +10,8 @@ The cloud is measured by mass quantiles (--cloud-mass-fraction, Solvers/bonded/B
 the outline of the bulk that a photograph shows, not the stray particles; v_a is also given as
 the leading edge's displacement between the last two outputs, the experiment's measure.
 --dissipation ShockViscosity runs the model with shock heating (docs/physics.md §5.1); --compare
-runs the paper's model and that one side by side (debris_cloud_compare.png).
+runs the paper's model and that one side by side (debris_cloud_compare.png). --set PROPERTY=VALUE
+sets any other BondedImpact property (for example the shock heating's ShockViscosityQuadratic).
 
     scripts/pvbatch examples/hvi_debris_cloud.py --help
 """
@@ -20,7 +21,7 @@ import os
 import sys
 import time
 
-from craterkit import fetch, field_value, load_plugin, print_progress
+from craterkit import fetch, field_value, load_plugin, print_progress, property_settings
 from craterkit.cross_section import show_point_spheres
 from craterkit.report import write_report
 
@@ -57,9 +58,14 @@ def parse_args(argv):
                    help="None: the paper's model; ShockViscosity: with shock heating")
     p.add_argument("--compare", action="store_true",
                    help="run both models and show their clouds side by side")
+    p.add_argument("--set", action="append", default=[], metavar="PROPERTY=VALUE",
+                   help="any other BondedImpact property, for every model run, e.g. --set "
+                        "ShockViscosityQuadratic=0.1 --set Temperature=2e-3")
     p.add_argument("--output-dir", default="results/hvi_debris_cloud")
     p.add_argument("--width", type=int, default=1200, help="image width in pixels")
-    return p.parse_args(argv)
+    args = p.parse_args(argv)
+    args.settings = property_settings(p, args.set)
+    return args
 
 
 def render_side_view(simple, source, data, filename, width, label):
@@ -111,7 +117,7 @@ def run_model(simple, args, dissipation):
                                  ThicknessRatio=args.thickness_ratio, Diameter=args.diameter,
                                  Seed=args.seed, EndTime=args.end_time, Dissipation=dissipation,
                                  CloudMassFraction=args.cloud_mass_fraction,
-                                 OutputInterval=args.end_time / max(1, args.outputs))
+                                 OutputInterval=args.end_time / max(1, args.outputs), **args.settings)
     print_progress(source, f"BondedImpact ({dissipation})")
     data, edges, energies = None, [], []  # edges: (time, leading edge behind the plate)
     for t in source.TimestepValues:
@@ -179,6 +185,7 @@ def main(argv):
         m = measures(data, va_snapshots, drift)
         m["run_seconds"] = round(time.time() - start, 1)
         m["particle_steps_per_s"] = round(data.GetNumberOfPoints() * field_value(data, "Step") / m["run_seconds"])
+        m["set_properties"] = {key: source.GetPropertyValue(key) for key in args.settings}  # as the source holds them
         runs[model] = m
         images.append(os.path.join(args.output_dir, "debris_cloud.png" if len(models) == 1 else
                                    f"debris_cloud_{model}.png"))

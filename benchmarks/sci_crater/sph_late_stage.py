@@ -19,7 +19,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
-from craterkit import fetch, fetch_stage, field_value, impactor_depth, load_plugin, sci  # noqa: E402
+from craterkit import fetch, fetch_stage, field_value, impactor_depth, load_plugin, property_settings, sci  # noqa: E402
 
 
 def say(message):
@@ -48,17 +48,7 @@ def main():
     p.add_argument("--set", action="append", default=[], metavar="PROPERTY=VALUE",
                    help="any other SPHImpact property, e.g. --set FrictionAngle=25 --set TargetPorosity=0.4")
     args = p.parse_args()
-    extra = {}
-    for item in args.set:
-        key, sep, value = item.partition("=")
-        if not sep:
-            p.error(f"--set {item}: expected PROPERTY=VALUE")
-        for kind in (int, float, str):  # BlockStepLevels=7 is an integer property
-            try:
-                extra[key] = kind(value)  # str: a string property such as MaterialDirectory
-                break
-            except ValueError:
-                continue
+    extra = property_settings(p, args.set)
 
     simple = load_plugin()
     sc = sci.scales(args.gravity, args.impactor_mass, args.impact_speed, args.impactor_material, "regolith",

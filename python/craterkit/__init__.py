@@ -236,3 +236,21 @@ def material_value(name, key, default=None):
     if default is None:
         raise SystemExit(f"error: {path} has no {key}")
     return default
+
+
+def property_settings(parser, items):
+    """The `--set PROPERTY=VALUE` items of an example's command line as keyword arguments for
+    a proxy: each value an int if it reads as one (BlockStepLevels=7), else a float, else the
+    string (MaterialDirectory=...); a malformed item is refused through parser.error."""
+    settings = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        if not sep or not key:
+            parser.error(f"--set {item}: expected PROPERTY=VALUE")
+        for kind in (int, float, str):
+            try:
+                settings[key] = kind(value)
+                break
+            except ValueError:
+                continue
+    return settings

@@ -10,7 +10,8 @@ from craterkit.testing import Checker, run_example
 source_dir, out = sys.argv[1], sys.argv[2]
 t = Checker("example hvi_debris_cloud")
 code = run_example(source_dir, "hvi_debris_cloud",
-                   ["--output-dir", out, "--width", "640", "--particles", "3000", "--compare"])
+                   ["--output-dir", out, "--width", "640", "--particles", "3000", "--compare",
+                    "--set", "ShockViscosityThreshold=450"])
 t.check(code == 0, f"example exited with {code}")
 report = json.load(open(os.path.join(out, "report.json")))
 t.check(report["particles"] > 2000, f"too few particles: {report['particles']}")
@@ -28,6 +29,9 @@ for model, r in runs.items():
     t.check(abs(va2 / va - 1.0) < 0.15, f"{model}: v_a/v0 {va} against {va2} from two outputs")
     # The front width (the leading tenth of the mass less its last hundredth) lies inside L_a.
     t.check(0.0 < r["front_sharpness"] < 1.0, f"{model}: front width {r['front_sharpness']} of L_a")
+    # --set reaches the source (read back from it), for every model run.
+    t.check(r.get("set_properties") == {"ShockViscosityThreshold": 450.0},
+            f"{model}: --set ShockViscosityThreshold=450 reached the source as {r.get('set_properties')}")
     print(f"{model}: F {r['F_measured']}, R {r['R_measured']}, v_a/v0 {va}, front {r['front_sharpness']} L_a, "
           f"internal energy {r['internal_energy_J']:.4g} J of {r['total_energy_J']:.4g} J, total energy drift "
           f"{r['total_energy_drift']:.2e}")
@@ -43,6 +47,9 @@ if len(runs) == 2:
     t.check(abs(shock["total_energy_drift"]) < 2.0 * abs(paper["total_energy_drift"]) + 1e-6,
             f"total energy drift {shock['total_energy_drift']:.2e} with ShockViscosity, "
             f"{paper['total_energy_drift']:.2e} without")
+# A malformed --set is refused by name before any run.
+code = run_example(source_dir, "hvi_debris_cloud", ["--output-dir", out, "--set", "ShockViscosityThreshold"])
+t.check(code != 0, "--set without a value was accepted")
 for image, least in (("debris_cloud_None.png", 5000), ("debris_cloud_ShockViscosity.png", 5000),
                      ("debris_cloud_compare.png", 10000)):
     path = os.path.join(out, image)
