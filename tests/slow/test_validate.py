@@ -124,8 +124,9 @@ class RowsThatCanFail(unittest.TestCase):
             self.assertEqual(self.verdicts(validate.pi_scaling), [ok, ok, True])
 
     def test_hvi_front_velocity_bounded_by_the_impact_speed(self):
+        layers = (1.1, 1.05, 1.0)  # the lattice series that follows (test_hvi_front_layers)
         for speeds, ok in (((0.95, 0.9, 0.85, 0.8), True), ((1.12, 0.9, 0.85, 0.8), False)):
-            it = iter(speeds)
+            it = iter(speeds + layers)
 
             def fake(*a, it=it):
                 va = next(it)
@@ -142,6 +143,20 @@ class RowsThatCanFail(unittest.TestCase):
                 self.assertEqual(checked[0], ok)
                 self.assertTrue(all(checked[1:]))
             self.assertTrue(all(row.ok is None for row in rows if row.tolerance == "stated"))
+
+    def test_hvi_front_layers_must_fall_as_the_plate_is_resolved(self):
+        for speeds, ok in (((1.12, 1.08, 1.05), True), ((1.12, 1.08, 1.09), False)):
+            it = iter(speeds)
+
+            def fake(*a, it=it):
+                one = {"va_over_v0_measured": next(it)}
+                return {"particles": 1000, "models": {"None": one, "ShockViscosity": dict(one)}}
+
+            validate.hvi_debris_cloud_run = fake
+            rows = validate.hvi_front_layers(self.args)
+            checked = [row.ok for row in rows if row.tolerance == "monotonic"]
+            self.assertEqual(checked, [ok, ok])
+            self.assertEqual(sum(row.tolerance == "stated" for row in rows), 6)
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)
