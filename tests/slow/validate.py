@@ -371,7 +371,7 @@ def hvi_front_velocity(args):
 def hvi_front_layers(args):
     """The front against the lattice's layers across the plate (t/D = 0.2, 6.7 km/s, 8 us, both
     models): the thin plates above are 2 layers thick, and a front that outruns the projectile
-    there is the lattice's, not the model's, if v_a/v0 falls as the plate is resolved (2, 4, 6
+    there is at least partly the lattice's if v_a/v0 falls as the plate is resolved (2, 4, 6
     layers; --quick 2, 3, 4). Asserted: v_a/v0 falls with every refinement, for each model."""
     td, speeds = 0.2, {model: [] for model in MODELS}
     for layers in ((2, 3, 4) if args.quick else (2, 4, 6)):
