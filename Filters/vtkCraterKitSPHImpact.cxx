@@ -96,6 +96,8 @@ void vtkCraterKitSPHImpact::BuildRun() {
   p.lateStageStopMaterial = this->StopImpactorAtLateStage ? kImpactorMaterial : -1;
   p.domainRadius = this->DomainRadius;
   p.lateStageSoundSpeed = this->LateStageSoundSpeed;
+  p.lateStageInitialSoundSpeed = this->LateStageInitialSoundSpeed;
+  p.lateStageSoundSpeedExponent = this->LateStageSoundSpeedExponent;
   p.blockStepLevels = this->BlockStepLevels;
   this->Spacing = problem.spacing;
   this->ContainerParticles = problem.containerParticles;
@@ -166,7 +168,9 @@ void vtkCraterKitSPHImpact::PrintSelf(ostream& os, vtkIndent indent) {
       this->ArtificialViscosityBeta, "XSPH", this->XSPH, "CourantNumber", this->CourantNumber,
       "MinTimeStep", this->MinTimeStep, "LateStageTime", this->LateStageTime,
       "StopImpactorAtLateStage", this->StopImpactorAtLateStage, "DomainRadius", this->DomainRadius,
-      "LateStageSoundSpeed", this->LateStageSoundSpeed, "BlockStepLevels", this->BlockStepLevels,
-      "CheckpointFile", this->CheckpointFile, "CheckpointInterval", this->CheckpointInterval,
-      "ResumeFromCheckpoint", this->ResumeFromCheckpoint, "KeptStates", this->KeptStates);
+      "LateStageSoundSpeed", this->LateStageSoundSpeed, "LateStageInitialSoundSpeed",
+      this->LateStageInitialSoundSpeed, "LateStageSoundSpeedExponent",
+      this->LateStageSoundSpeedExponent, "BlockStepLevels", this->BlockStepLevels, "CheckpointFile",
+      this->CheckpointFile, "CheckpointInterval", this->CheckpointInterval, "ResumeFromCheckpoint",
+      this->ResumeFromCheckpoint, "KeptStates", this->KeptStates);
 }

@@ -99,6 +99,10 @@ public:
   vtkBooleanMacro(StopImpactorAtLateStage, bool);
   vtkSetMacro(LateStageSoundSpeed, double);
   vtkGetMacro(LateStageSoundSpeed, double);
+  vtkSetMacro(LateStageInitialSoundSpeed, double);
+  vtkGetMacro(LateStageInitialSoundSpeed, double);
+  vtkSetMacro(LateStageSoundSpeedExponent, double);
+  vtkGetMacro(LateStageSoundSpeedExponent, double);
   vtkSetMacro(BlockStepLevels, int);
   vtkGetMacro(BlockStepLevels, int);
   vtkSetStdStringFromCharMacro(CheckpointFile);
@@ -153,6 +157,8 @@ private:
   bool StopImpactorAtLateStage = false;
   double DomainRadius = 0.0;
   double LateStageSoundSpeed = 100.0;
+  double LateStageInitialSoundSpeed = 0.0;
+  double LateStageSoundSpeedExponent = 0.6;
   int BlockStepLevels = 0;
   std::string CheckpointFile;
   int CheckpointInterval = 0;

@@ -67,6 +67,12 @@ def parse_args(argv):
                         "(SPHImpact's BlockStepLevels); 0: one step for all")
     g.add_argument("--late-stage-sound-speed", type=float, default=0.0,
                    help="m/s, of the late-stage scheme; 0: 10 sqrt(g D), ten times the crater's own speed scale")
+    g.add_argument("--late-stage-initial-sound-speed", type=float, default=0.0,
+                   help="m/s; above the late-stage sound speed, c starts here at the switch and falls as "
+                        "(t / late-stage time)^-q to it, so that it stays above the crater's flow speeds "
+                        "(SPHImpact's LateStageInitialSoundSpeed); 0: one switch")
+    g.add_argument("--late-stage-sound-speed-exponent", type=float, default=0.6,
+                   help="q of the falling late-stage sound speed (SPHImpact's LateStageSoundSpeedExponent)")
     g.add_argument("--sph-domain-radius", type=float, default=0.0,
                    help="m; SPH particles farther from the impact point fly ballistically (SPHImpact's "
                         "DomainRadius); 0: no limit")
@@ -108,10 +114,12 @@ def parse_args(argv):
         if not (value > 0.0 and math.isfinite(value)):
             p.error(f"--{name.replace('_', '-')} must be positive (got {value})")
     for name in ("ejecta_speed_limit", "bed_radius", "dem_time", "handoff_time", "sph_target_radius",
-                 "late_stage_sound_speed", "cohesion", "rolling_friction"):
+                 "late_stage_sound_speed", "late_stage_initial_sound_speed", "cohesion", "rolling_friction"):
         value = getattr(args, name)
         if not (value >= 0.0 and math.isfinite(value)):
             p.error(f"--{name.replace('_', '-')} must not be negative (got {value})")
+    if not (0.0 < args.late_stage_sound_speed_exponent <= 2.0):
+        p.error(f"--late-stage-sound-speed-exponent must be in (0, 2] (got {args.late_stage_sound_speed_exponent})")
     if not (0.0 < args.handoff_fraction <= 10.0):
         p.error(f"--handoff-fraction must be in (0, 10] (got {args.handoff_fraction})")
     if not (0 <= args.sph_block_steps <= 12):

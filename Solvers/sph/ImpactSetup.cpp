@@ -321,6 +321,7 @@ std::vector<NamedValue> impactFields(const SphSolver& solver, const SphImpactSet
           number("ImpactorMass", setup.impactorMass),
           text("TargetMaterial", setup.targetMaterial),
           number("FrictionAngle", setup.frictionAngle),
+          number("LateStageSoundSpeed", solver.lateStageSoundSpeed()),
           number("StopImpactorAtLateStage",
                  solver.params().lateStageStopMaterial == kImpactorMaterial ? 1.0 : 0.0)};
 }

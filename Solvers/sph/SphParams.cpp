@@ -46,6 +46,15 @@ void SphParams::validate() const {
     throw InputError("SPH: the late-stage time must be finite (negative: no late stage)");
   if (lateStageTime >= 0.0 && !(lateStageSoundSpeed > 0.0 && std::isfinite(lateStageSoundSpeed)))
     throw InputError("SPH: the late-stage sound speed must be positive");
+  if (!(lateStageInitialSoundSpeed >= 0.0) || !std::isfinite(lateStageInitialSoundSpeed))
+    throw InputError("SPH: the late-stage initial sound speed must be finite and not negative "
+                     "(0: one switch)");
+  if (lateStageInitialSoundSpeed > lateStageSoundSpeed &&
+      !(lateStageSoundSpeedExponent > 0.0 && lateStageSoundSpeedExponent <= 2.0))
+    throw InputError("SPH: the late-stage sound speed's exponent must be in (0, 2]");
+  if (lateStageInitialSoundSpeed > lateStageSoundSpeed && lateStageTime == 0.0)
+    throw InputError("SPH: a late-stage sound speed that falls with time needs a late-stage "
+                     "time after 0");
   if (lateStageStopMaterial < -1 || lateStageStopMaterial >= static_cast<int>(materials.size()))
     throw InputError("SPH: the material stopped at the late-stage switch must be one of the " +
                      std::to_string(materials.size()) + " materials (-1: none)");

@@ -61,6 +61,12 @@ struct SphParams {
   double domainRadius = 0.0; // m
   double domainCentre[3] = {0, 0, 0};
   double lateStageSoundSpeed = 100.0; // m/s
+  // A late-stage sound speed that falls with the crater's flow (sph/LateStageSchedule.h): above
+  // lateStageSoundSpeed, c starts at this value at the switch and falls as (t/lateStageTime)^(−q),
+  // q = lateStageSoundSpeedExponent, in stages of 2^(1/4), down to lateStageSoundSpeed (0: one
+  // switch, straight to lateStageSoundSpeed).
+  double lateStageInitialSoundSpeed = 0.0; // m/s
+  double lateStageSoundSpeedExponent = 0.6;
   // The target's weight through the switch (sph/Overburden.h): the bulk density ρ_o of the
   // overburden (0: none, the whole pressure falls with the bulk modulus) and the height of the
   // free surface along −gravity (the plane x·ĝ = −overburdenSurface, ĝ the unit gravity). Under

@@ -1,5 +1,6 @@
 #include "sph/SphSolver.h"
 #include "sph/ImpactorStop.h"
+#include "sph/LateStageSchedule.h"
 
 #include "common/Error.h"
 #include "common/SimdClones.h"
@@ -56,7 +57,7 @@ SphSolver::SphSolver(const SphState& initial, const SphParams& params, const Sph
   // Switched before the first settle: with the early stage's law, settle() would read the late
   // stage's small strains as gigapascals, compact the pores (α) for good and clip the stress.
   if (par_.lateStageTime >= 0.0 && time_ > par_.lateStageTime) {
-    switchMaterials();
+    switchMaterials(lateStageSoundSpeedAt(par_, time_)); // the stage the state was written in
     late_ = true;
   }
   nb_.build(s_, par_, k1_.dx, 0.0, false);
@@ -454,35 +455,54 @@ double SphSolver::computeRates(const SphState& s, const std::vector<double>& p,
                          : rates<CubicSpline, false>(s, p, c, r, active);
 }
 
-std::vector<double> SphSolver::switchMaterials() {
+std::vector<double> SphSolver::switchMaterials(double c) {
   std::vector<double> scale(par_.materials.size(), 1.0);
   for (std::size_t m = 0; m < par_.materials.size(); ++m)
-    scale[m] = par_.materials[m].switchToLateStage(par_.lateStageSoundSpeed);
+    scale[m] = par_.materials[m].switchToLateStage(c);
+  lateC_ = c;
   return scale;
 }
 
 void SphSolver::enterLateStage() {
   if (par_.lateStageStopMaterial >= 0)
     stopInFlow(s_, par_.lateStageStopMaterial, par_.materials);
+  late_ = true;
+  switchState(lateStageSoundSpeedAt(par_, par_.lateStageTime));
+  stableStep_ = limitStep(s_, k1_, lastSignal_);
+}
+
+void SphSolver::switchState(double c) {
   const std::vector<double> earlyK = earlyBulkModuli(par_.materials);
-  const std::vector<double> scale = switchMaterials();
+  const std::vector<double> scale = switchMaterials(c);
   keepOverburden(s_, par_, earlyK);
   for (std::size_t i = 0; i < s_.size(); ++i) {
     const double f = scale[static_cast<std::size_t>(s_.material[i])];
     for (int k = 0; k < 6; ++k)
       s_.S[6 * i + k] *= f;
   }
-  late_ = true;
   settle(s_, p_, c_);
-  const double signal = computeRates(s_, p_, c_, k1_);
-  stableStep_ = limitStep(s_, k1_, signal);
+  lastSignal_ = computeRates(s_, p_, c_, k1_);
+}
+
+void SphSolver::followSchedule() {
+  const double c = lateStageSoundSpeedAt(par_, time_);
+  if (!(c < lateC_))
+    return;
+  switchState(c);
+  // One step for all: the new law's limit. Block steps keep the cycle they asked for: the
+  // particles' own limits only grow as c falls, and each grows its step by at most 2 per cycle.
+  if (par_.blockStepLevels == 0)
+    stableStep_ = limitStep(s_, k1_, lastSignal_);
 }
 
 double SphSolver::step(double dt) {
   if (dt <= 0.0)
     dt = stableStep_;
-  if (late_ && par_.blockStepLevels > 0)
-    return blockCycle(dt);
+  if (late_ && par_.blockStepLevels > 0) {
+    const double cycle = blockCycle(dt);
+    followSchedule();
+    return cycle;
+  }
   bool toSwitch = false;
   if (!late_ && par_.lateStageTime >= 0.0 && time_ + dt > par_.lateStageTime) {
     if (par_.lateStageTime - time_ <= 1e-9 * dt) {
@@ -533,6 +553,8 @@ double SphSolver::step(double dt) {
   // clock.
   time_ = toSwitch && dt == asked ? par_.lateStageTime : time_ + dt;
   ++steps_;
+  if (late_)
+    followSchedule();
   return dt;
 }
 

@@ -57,6 +57,8 @@ public:
   // step (advanceTo's and SphRun's loops end there).
   bool reached(double t) const;
   bool lateStage() const { return late_; }
+  // The late-stage law's sound speed now (0 before the switch; sph/LateStageSchedule.h).
+  double lateStageSoundSpeed() const { return lateC_; }
   std::size_t steps() const { return steps_; }
   std::size_t neighbourBuilds() const { return nb_.builds(); }       // neighbour lists built so far
   std::size_t neighbourRefreshes() const { return nb_.refreshes(); } // partial rebuilds so far
@@ -116,7 +118,14 @@ private:
   // Switches the materials to the late-stage equations of state and scales each particle's
   // deviatoric stress, then recomputes the current state's rates.
   void enterLateStage();
-  std::vector<double> switchMaterials(); // to the late stage; returns each material's G'/G
+  // To the late-stage law of sound speed c; returns each material's G'/G.
+  std::vector<double> switchMaterials(double c);
+  // switchMaterials(c) with the state carried over (the lithostatic pressure kept, the
+  // deviatoric stress scaled), then the state's pressures and rates (k1_).
+  void switchState(double c);
+  // After a step in the late stage: the next stage of a falling sound speed, when it is due
+  // (sph/LateStageSchedule.h).
+  void followSchedule();
   // Positions into the periodic box, h from ρ, ρ by summation when asked, then pressure and
   // sound speed into p and c and the yield limit on the deviatoric stress.
   // With `need`, the walls' pressure only where need[i] != 0 (block steps).
@@ -201,6 +210,8 @@ private:
   double time_ = 0.0, stableStep_ = 0.0;
   std::size_t steps_ = 0;
   bool late_ = false;
+  double lateC_ = 0.0;      // the late-stage law's sound speed now (0: before the switch)
+  double lastSignal_ = 0.0; // computeRates' answer in switchState
 };
 
 } // namespace craterkit

@@ -3,7 +3,8 @@ LateStageSoundSpeed) and a DomainRadius for the fast ejecta, measured by CraterP
 output and compared with the Housen & Holsapple (2011) pi-scaling diameter for the same
 impactor, target and gravity. Prints one line per output (crater diameter at the pre-impact
 level, depth, the depth of the impactor's centre of mass, rim diameter, kinetic energy of the
-slow material, seconds) and a summary.
+slow material, the largest speed under the pre-impact surface against the late-stage sound speed
+in force, seconds) and a summary.
 
     scripts/pvbatch benchmarks/sci_crater/sph_late_stage.py            # 2 kg at 2 km/s, g = 9.81, ~8 min
     scripts/pvbatch benchmarks/sci_crater/sph_late_stage.py --help
@@ -73,16 +74,22 @@ def main():
         speed = np.sqrt((v * v).sum(1))
         slow = speed < args.slow
         ke_slow = 0.5 * float((m[slow] * speed[slow] ** 2).sum())
+        # The flow under the pre-impact surface against the late-stage law's sound speed: the
+        # law holds only while c is several times the flow speeds (docs/physics.md 2.8).
+        z = vtk_to_numpy(data.GetPoints().GetData())[:, 2]
+        buried = float(speed[z < 0.0].max()) if (z < 0.0).any() else 0.0
+        c_late = field_value(data, "LateStageSoundSpeed", 0.0)
         imp_depth = impactor_depth(data)["centre_of_mass_m"]  # the crater forms around its track
         imp_depth = float("nan") if imp_depth is None else imp_depth
         profile.UpdatePipeline(t)
         fd = fetch(profile).GetFieldData()
         value = lambda name: fd.GetArray(name).GetValue(0) if fd.GetArray(name) else float("nan")  # noqa: E731
         row = (t, int(field_value(data, "Step")), value("CraterDiameter"), value("CraterDepth"),
-               value("RimDiameter"), ke_slow, time.time() - start, imp_depth)
+               value("RimDiameter"), ke_slow, time.time() - start, imp_depth, buried, c_late)
         rows.append(row)
         say(f"t = {row[0]:.3f} s  step {row[1]:6d}  D = {row[2]:.3f} m ({row[2] / d_pi:.2f} of pi-scaling)  "
-            f"depth {row[3]:.3f} m  impactor {row[7]:.3f} m deep  rim diameter {row[4]:.3f} m  slow KE {row[5]:.3g} J  {row[6]:.0f} s")
+            f"depth {row[3]:.3f} m  impactor {row[7]:.3f} m deep  rim diameter {row[4]:.3f} m  slow KE {row[5]:.3g} J  "
+            f"buried flow {row[8]:.3g} m/s, c {row[9]:.3g} m/s  {row[6]:.0f} s")
     last = rows[-1]
     if args.save:
         writer = vtkXMLPolyDataWriter()

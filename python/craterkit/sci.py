@@ -158,8 +158,10 @@ def sph_stage(simple, args, sc, output_dir):
                            TargetRadius=sc.sph_target_radius, TargetCoarsening=args.sph_coarsening,
                            TargetContainer=1, LateStageTime=args.late_stage_time,
                            StopImpactorAtLateStage=1 if args.stop_impactor else 0,
-                           LateStageSoundSpeed=sc.late_stage_sound_speed, BlockStepLevels=args.sph_block_steps,
-                           DomainRadius=args.sph_domain_radius, EndTime=t, OutputInterval=t,
+                           LateStageSoundSpeed=sc.late_stage_sound_speed,
+                           LateStageInitialSoundSpeed=args.late_stage_initial_sound_speed,
+                           LateStageSoundSpeedExponent=args.late_stage_sound_speed_exponent,
+                           BlockStepLevels=args.sph_block_steps, DomainRadius=args.sph_domain_radius, EndTime=t, OutputInterval=t,
                            CheckpointFile=checkpoint, CheckpointInterval=200, ResumeFromCheckpoint=1 if resume else 0)
     say(f"[1/5] SPH impact to {t:.2e} s" + (f" (resumed from {checkpoint})" if resume else ""))
     print_progress(sph, "SPH stage")
@@ -489,6 +491,12 @@ def report_entries(args, sc, run):
         "sph_resolution": args.sph_resolution,
         "sph_target_coarsening": args.sph_coarsening,
         "handoff_time_s": run.handoff_time,
+        # The late stage as asked, and the sound speed the SPH state had at the hand-off (its own
+        # field: with --sph-state, the saved run's).
+        "late_stage": {"time_s": args.late_stage_time, "sound_speed_m_s": sc.late_stage_sound_speed,
+                       "initial_sound_speed_m_s": args.late_stage_initial_sound_speed,
+                       "sound_speed_exponent": args.late_stage_sound_speed_exponent,
+                       "sound_speed_at_handoff_m_s": field_value(run.sph_data, "LateStageSoundSpeed")},
         "impactor_depth_at_handoff_m": run.impactor_depth,
         "ejecta_speed_limit_m_s": round(sc.ejecta_limit, 4),
         "sph_totals_at_handoff": run.sph_totals,

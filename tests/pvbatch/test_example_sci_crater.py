@@ -5,8 +5,9 @@ the hand-off carried the compact SPH material's momentum over exactly and the dr
 account for the rest, the DEM bed lost energy as it settled, the pi-scaling prediction agrees
 with the values computed by hand in docs/physics.md section 4.2, the impactor's reported depth lies
 inside the SPH target, and the pictures and report exist; then that a run resumed after its
-first frame continues from the checkpoint, and that a bad --sph-coarsening, a negative --cohesion
-or --rolling-friction and a zero --handoff-fraction are refused."""
+first frame continues from the checkpoint, and that a bad --sph-coarsening, a negative --cohesion,
+--rolling-friction or --late-stage-initial-sound-speed, a zero --handoff-fraction and a zero
+--late-stage-sound-speed-exponent are refused."""
 
 import json
 import os
@@ -66,6 +67,12 @@ t.check(depth is not None and diameter is not None and
 pen = r["impactor_depth_at_handoff_m"]
 t.check(pen["centre_of_mass_m"] is not None and 0.1 * r["pi_scaling_diameter_m"] < pen["centre_of_mass_m"] <=
         pen["deepest_m"] < 0.8 * r["pi_scaling_diameter_m"], f"impactor's depth at the hand-off {pen}")
+# One switch (no --late-stage-initial-sound-speed): the SPH state handed off under the late law
+# it was asked for, 10 sqrt(g D_pi) (its own field, LateStageSoundSpeed).
+late = r["late_stage"]
+t.check(late["initial_sound_speed_m_s"] == 0.0 and late["sound_speed_at_handoff_m_s"] is not None and
+        abs(late["sound_speed_at_handoff_m_s"] - late["sound_speed_m_s"]) <= 1e-9 * late["sound_speed_m_s"],
+        f"the late stage at the hand-off: {late}")
 for image in r["images"]:
     path = os.path.join(out, image)
     t.check(os.path.isfile(path) and os.path.getsize(path) > 10000, f"{image} missing or empty")
@@ -117,4 +124,8 @@ code = run_example(source_dir, "sci_crater", ["--handoff-fraction", "0", "--outp
 t.check(code == 2, f"--handoff-fraction 0: exit code {code}, expected the usage error 2")
 code = run_example(source_dir, "sci_crater", ["--rolling-friction", "-0.1", "--output-dir", out + "_bad"])
 t.check(code == 2, f"--rolling-friction -0.1: exit code {code}, expected the usage error 2")
+code = run_example(source_dir, "sci_crater", ["--late-stage-sound-speed-exponent", "0", "--output-dir", out + "_bad"])
+t.check(code == 2, f"--late-stage-sound-speed-exponent 0: exit code {code}, expected the usage error 2")
+code = run_example(source_dir, "sci_crater", ["--late-stage-initial-sound-speed", "-5", "--output-dir", out + "_bad"])
+t.check(code == 2, f"--late-stage-initial-sound-speed -5: exit code {code}, expected the usage error 2")
 sys.exit(t.close())

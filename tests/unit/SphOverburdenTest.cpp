@@ -1,6 +1,7 @@
 // The target's weight through the late-stage switch (sph/Overburden.h): a layer of granular
 // soil at rest under gravity in its lithostatic state, switched to a 42 times softer law.
 #include "SphColumns.h"
+#include "sph/LateStageSchedule.h"
 #include "sph/SphSolver.h"
 
 #include <gtest/gtest.h>
@@ -14,8 +15,10 @@ using namespace craterkit;
 namespace {
 
 struct Ringing {
-  double maxSpeed = 0.0;  // the largest particle speed over the samples, m/s
-  double maxMeanVz = 0.0; // the largest |mean vertical velocity| of the layer, m/s
+  double maxSpeed = 0.0;       // the largest particle speed over the samples, m/s
+  double maxMeanVz = 0.0;      // the largest |mean vertical velocity| of the layer, m/s
+  double endSoundSpeed = 0.0;  // the late-stage law's c at the end, m/s
+  double endBulkModulus = 0.0; // the soil's K at the end, Pa
 };
 
 // A periodic layer H = 0.2 m deep (10 particles) of cohesionless soil (φ = 30°, Murnaghan with
@@ -23,8 +26,10 @@ struct Ringing {
 // lithostatic state p = ρb g (H − z) (by its density), switched at 0.1 ms to the late-stage law
 // with c = 8 m/s (K' = ρ0 c² = 96 kPa, K'/K = 0.024), followed for three periods 4H/c = 0.1 s.
 // With distention α > 1 the soil is porous (bulk density ρb = ρ0 / α, α fixed: its load stays
-// far below the crush curve's elastic limit of 1 MPa).
-Ringing switchedLayer(bool keepOverburden, double alpha = 1.0) {
+// far below the crush curve's elastic limit of 1 MPa). With c0 > 0 the late-stage c falls from c0
+// as (t / 0.1 ms)^(−q) to 8 m/s (sph/LateStageSchedule.h); `levels` > 0: block steps.
+Ringing switchedLayer(bool keepOverburden, double alpha = 1.0, double c0 = 0.0, double q = 0.6,
+                      int levels = 0) {
   const double H = 0.2, rho0 = 1500.0, g = 9.81, K = 4e6, n = 7.0, c = 8.0;
   const int nz = 10, nxy = 4;
   const double dx = H / nz;
@@ -42,6 +47,8 @@ Ringing switchedLayer(bool keepOverburden, double alpha = 1.0) {
   par.materials = {soil, floor};
   par.gravity[2] = -g;
   par.lateStageTime = 1e-4, par.lateStageSoundSpeed = c;
+  par.lateStageInitialSoundSpeed = c0, par.lateStageSoundSpeedExponent = q;
+  par.blockStepLevels = levels;
   if (keepOverburden)
     par.overburdenDensity = rho0 / alpha, par.overburdenSurface = H;
   const SphState s = sphtest::lithostaticColumn(par, nxy, nz, dx, rho0, g, K, n, alpha);
@@ -60,9 +67,11 @@ Ringing switchedLayer(bool keepOverburden, double alpha = 1.0) {
     }
     out.maxMeanVz = std::max(out.maxMeanVz, std::abs(mvz / mass));
   }
-  std::printf("layer (distention %g) switched to c = %g m/s %s the overburden: largest speed "
-              "%.4f m/s, largest |mean vz| %.4f m/s (g H / c = %.4f m/s)\n",
-              alpha, c, keepOverburden ? "keeping" : "without", out.maxSpeed, out.maxMeanVz,
+  out.endSoundSpeed = solver.lateStageSoundSpeed();
+  out.endBulkModulus = solver.params().materials[0].eos.murnaghanK0;
+  std::printf("layer (distention %g) switched to c = %g m/s (from %g m/s) %s the overburden: "
+              "largest speed %.4f m/s, largest |mean vz| %.4f m/s (g H / c = %.4f m/s)\n",
+              alpha, c, c0, keepOverburden ? "keeping" : "without", out.maxSpeed, out.maxMeanVz,
               g * H / c);
   return out;
 }
@@ -97,6 +106,83 @@ TEST(SphOverburden, LateStageSwitchKeepsAPorousLayerAtRest) {
   EXPECT_LT(kept.maxSpeed, 0.1 * scale);
 }
 
+// The late-stage c falling from 32 to 8 m/s over the first 26 ms (q = 0.25: 8 stages of 2^(1/4),
+// the last at 0.1 ms × 4^4), then 8 m/s to 0.3 s. Each stage switches the law again and must
+// carry the lithostatic pressure over as the first switch does: the same bounds as one switch.
+// Without the overburden the stages leave the layer's weight unsupported as one switch does.
+// The run must end on the last stage's law (K = ρ0 c², c = 8 m/s), which it misses if the
+// stages are not taken.
+TEST(SphOverburden, LateStageSoundSpeedFallingInStagesKeepsTheLayerAtRest) {
+  const double scale = 9.81 * 0.2 / 8.0;
+  const Ringing kept = switchedLayer(true, 1.0, 32.0, 0.25);
+  const Ringing without = switchedLayer(false, 1.0, 32.0, 0.25);
+  EXPECT_GT(without.maxMeanVz, 0.3 * scale);
+  EXPECT_LT(kept.maxMeanVz, 0.05 * scale);
+  EXPECT_LT(kept.maxSpeed, 0.1 * scale);
+  EXPECT_EQ(kept.endSoundSpeed, 8.0);
+  EXPECT_NEAR(kept.endBulkModulus, 1500.0 * 8.0 * 8.0, 1e-6);
+  // With block steps the stages are taken at the end of a cycle, where all particles are
+  // synchronised, with the same result.
+  const Ringing block = switchedLayer(true, 1.0, 32.0, 0.25, 3);
+  EXPECT_LT(block.maxMeanVz, 0.05 * scale);
+  EXPECT_LT(block.maxSpeed, 0.1 * scale);
+  EXPECT_EQ(block.endSoundSpeed, 8.0);
+}
+
+// The staged c against its power law c0 (t/t_s)^(−q): c0 at the switch, never below the law nor
+// more than one stage (2^(1/4)) above it, down to the floor, where it stays; a floor at or above
+// c0 is one switch.
+TEST(SphLateStage, SoundSpeedFollowsThePowerLawInQuarterOctaves) {
+  SphParams par;
+  par.lateStageTime = 1e-3, par.lateStageSoundSpeed = 0.5;
+  par.lateStageInitialSoundSpeed = 90.0, par.lateStageSoundSpeedExponent = 0.6;
+  EXPECT_EQ(lateStageSoundSpeedAt(par, 1e-3), 90.0);
+  double last = 90.0;
+  for (double t = 1e-3; t < 100.0; t *= 1.01) {
+    const double c = lateStageSoundSpeedAt(par, t), law = 90.0 * std::pow(t / 1e-3, -0.6);
+    ASSERT_LE(c, last) << "t = " << t;
+    ASSERT_GE(c, std::max(0.5, law) * (1.0 - 1e-12)) << "t = " << t;
+    ASSERT_LE(c, std::max(0.5, law * std::exp2(0.25)) * (1.0 + 1e-12)) << "t = " << t;
+    last = c;
+  }
+  EXPECT_EQ(last, 0.5);
+  par.lateStageInitialSoundSpeed = 0.0;
+  EXPECT_EQ(lateStageSoundSpeedAt(par, 5.0), 0.5);
+  par.lateStageInitialSoundSpeed = 0.4;
+  EXPECT_EQ(lateStageSoundSpeedAt(par, 5.0), 0.5);
+}
+
+// A solver restored at a time in the schedule (a resumed checkpoint) takes the stage it was
+// written in: its law is the running solver's, then and after both have gone on.
+TEST(SphLateStage, RestoredSolverTakesUpTheStageOfItsTime) {
+  SphParams par;
+  Material soil;
+  soil.name = "soil";
+  soil.eos.model = EquationOfState::Model::Murnaghan;
+  soil.eos.murnaghanRho0 = 1500.0, soil.eos.murnaghanK0 = 4e6, soil.eos.murnaghanN = 7.0;
+  soil.bulkModulus = 4e6, soil.shearModulus = 1.4e6;
+  soil.strength = Material::Strength::DruckerPrager, soil.frictionAngle = 30.0;
+  Material floor = soil;
+  floor.name = "floor", floor.rigid = true;
+  par.materials = {soil, floor};
+  par.gravity[2] = -9.81;
+  par.lateStageTime = 1e-4, par.lateStageSoundSpeed = 8.0;
+  par.lateStageInitialSoundSpeed = 32.0, par.lateStageSoundSpeedExponent = 0.25;
+  const SphState s = sphtest::lithostaticColumn(par, 4, 10, 0.02, 1500.0, 9.81, 4e6, 7.0, 1.0);
+  SphSolver running(s, par);
+  running.advanceTo(2e-3);
+  const double mid = running.lateStageSoundSpeed();
+  EXPECT_LT(mid, 32.0);
+  EXPECT_GT(mid, 8.0);
+  SphSolver restored(running.state(), par, {running.time(), running.steps(), 0.0});
+  EXPECT_EQ(restored.lateStageSoundSpeed(), mid);
+  EXPECT_EQ(restored.params().materials[0].eos.murnaghanK0,
+            running.params().materials[0].eos.murnaghanK0);
+  running.advanceTo(0.03), restored.advanceTo(0.03);
+  EXPECT_EQ(restored.lateStageSoundSpeed(), 8.0);
+  EXPECT_EQ(running.lateStageSoundSpeed(), 8.0);
+}
+
 // Bad input: a negative or non-finite overburden is refused, naming the property.
 TEST(SphOverburden, BadOverburdenIsRefused) {
   auto message = [](double density, double surface) {
@@ -114,4 +200,28 @@ TEST(SphOverburden, BadOverburdenIsRefused) {
   EXPECT_NE(message(NAN, 0.0).find("overburden density"), std::string::npos);
   EXPECT_NE(message(1000.0, INFINITY).find("surface height"), std::string::npos);
   EXPECT_EQ(message(1000.0, 0.0), "");
+}
+
+// Bad input: a negative initial sound speed, an exponent outside (0, 2] or a falling c with the
+// switch at t = 0 is refused, naming the property.
+TEST(SphLateStage, BadScheduleIsRefused) {
+  auto message = [](double c0, double q, double t) {
+    SphParams par;
+    par.materials = {Material()};
+    par.lateStageTime = t, par.lateStageSoundSpeed = 1.0;
+    par.lateStageInitialSoundSpeed = c0, par.lateStageSoundSpeedExponent = q;
+    try {
+      par.validate();
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message(-1.0, 0.6, 1e-3).find("initial sound speed"), std::string::npos);
+  EXPECT_NE(message(NAN, 0.6, 1e-3).find("initial sound speed"), std::string::npos);
+  EXPECT_NE(message(10.0, 0.0, 1e-3).find("exponent"), std::string::npos);
+  EXPECT_NE(message(10.0, 3.0, 1e-3).find("exponent"), std::string::npos);
+  EXPECT_NE(message(10.0, 0.6, 0.0).find("time after 0"), std::string::npos);
+  EXPECT_EQ(message(10.0, 0.6, 1e-3), "");
+  EXPECT_EQ(message(0.0, 0.0, 1e-3), ""); // one switch: the exponent is not read
 }
