@@ -20,7 +20,7 @@
 namespace craterkit {
 
 SphSolver::SphSolver(const SphState& initial, const SphParams& params, const SphClock& clock)
-    : s_(initial), par_(params) {
+    : s_(initial), par_(params), earlyAlpha_(params.alpha) {
   par_.validate();
   for (std::size_t m = 0; m < par_.materials.size(); ++m) {
     Material& mat = par_.materials[m];
@@ -460,6 +460,9 @@ std::vector<double> SphSolver::switchMaterials(double c) {
   for (std::size_t m = 0; m < par_.materials.size(); ++m)
     scale[m] = par_.materials[m].switchToLateStage(c);
   lateC_ = c;
+  // The artificial viscosity's linear term goes as α c h: above the final c it would make the
+  // flow's numerical viscosity a choice of the schedule, so α keeps the final c's α c.
+  par_.alpha = earlyAlpha_ * std::min(1.0, par_.lateStageSoundSpeed / c);
   return scale;
 }
 

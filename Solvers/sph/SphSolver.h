@@ -211,6 +211,7 @@ private:
   std::size_t steps_ = 0;
   bool late_ = false;
   double lateC_ = 0.0;      // the late-stage law's sound speed now (0: before the switch)
+  double earlyAlpha_ = 0.0; // SphParams::alpha as given (the late stage scales it)
   double lastSignal_ = 0.0; // computeRates' answer in switchState
 };
 
