@@ -183,18 +183,27 @@ TEST(SphLateStage, RestoredSolverTakesUpTheStageOfItsTime) {
   EXPECT_EQ(running.lateStageSoundSpeed(), 8.0);
 }
 
+namespace {
+
+// What SphParams::validate says of par, with one default material ("" when it takes it).
+std::string refusal(SphParams par) {
+  par.materials = {Material()};
+  try {
+    par.validate();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+} // namespace
+
 // Bad input: a negative or non-finite overburden is refused, naming the property.
 TEST(SphOverburden, BadOverburdenIsRefused) {
   auto message = [](double density, double surface) {
     SphParams par;
-    par.materials = {Material()};
     par.overburdenDensity = density, par.overburdenSurface = surface;
-    try {
-      par.validate();
-    } catch (const std::exception& e) {
-      return std::string(e.what());
-    }
-    return std::string();
+    return refusal(par);
   };
   EXPECT_NE(message(-1.0, 0.0).find("overburden density"), std::string::npos);
   EXPECT_NE(message(NAN, 0.0).find("overburden density"), std::string::npos);
@@ -259,15 +268,9 @@ TEST(SphLateStage, FallingSoundSpeedKeepsTheFinalLawsViscosity) {
 TEST(SphLateStage, BadScheduleIsRefused) {
   auto message = [](double c0, double q, double t) {
     SphParams par;
-    par.materials = {Material()};
     par.lateStageTime = t, par.lateStageSoundSpeed = 1.0;
     par.lateStageInitialSoundSpeed = c0, par.lateStageSoundSpeedExponent = q;
-    try {
-      par.validate();
-    } catch (const std::exception& e) {
-      return std::string(e.what());
-    }
-    return std::string();
+    return refusal(par);
   };
   EXPECT_NE(message(-1.0, 0.6, 1e-3).find("initial sound speed"), std::string::npos);
   EXPECT_NE(message(NAN, 0.6, 1e-3).find("initial sound speed"), std::string::npos);
