@@ -4,8 +4,34 @@
 #include "sph/SphSolver.h"
 
 #include <cmath>
+#include <exception>
+#include <string>
 
 namespace craterkit::sphtest {
+
+// Cohesionless soil (φ = 30°, Drucker–Prager) with a soft Murnaghan equation of state (matrix
+// density ρ0, K, n; G = 0.35 K).
+inline Material granularSoil(double rho0, double K, double n = 7.0) {
+  Material soil;
+  soil.name = "soil";
+  soil.eos.model = EquationOfState::Model::Murnaghan;
+  soil.eos.murnaghanRho0 = rho0, soil.eos.murnaghanK0 = K, soil.eos.murnaghanN = n;
+  soil.bulkModulus = K, soil.shearModulus = 0.35 * K;
+  soil.strength = Material::Strength::DruckerPrager;
+  soil.frictionAngle = 30.0, soil.cohesion = 0.0;
+  return soil;
+}
+
+// What SphParams::validate says of par, with one default material ("" when it takes it).
+inline std::string refusal(SphParams par) {
+  par.materials = {Material()};
+  try {
+    par.validate();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
 
 // nxy × nxy × nz particles of spacing dx (material 0) on three rows of rigid floor (material 1),
 // periodic across x and y (sets par's box), each carrying m = ρb dx³ at rest, built in the

@@ -194,23 +194,7 @@ struct Collapse {
   std::size_t steps = 0;
 };
 
-// Cohesionless soil (φ = 30°, Drucker–Prager) with a soft Murnaghan equation of state, and a
-// rigid floor of the same material.
-Material granularSoil(double rho0, double bulkModulus) {
-  Material soil;
-  soil.name = "soil";
-  soil.eos.model = EquationOfState::Model::Murnaghan;
-  soil.eos.murnaghanRho0 = rho0;
-  soil.eos.murnaghanK0 = bulkModulus;
-  soil.eos.murnaghanN = 7.0;
-  soil.bulkModulus = bulkModulus;
-  soil.shearModulus = 0.35 * bulkModulus;
-  soil.strength = Material::Strength::DruckerPrager;
-  soil.frictionAngle = 30.0;
-  soil.cohesion = 0.0;
-  return soil;
-}
-
+// A rigid floor of the soil's material (sphtest::granularSoil: cohesionless, φ = 30°).
 Material rigidFloor(const Material& soil) {
   Material floor = soil;
   floor.name = "floor";
@@ -222,7 +206,7 @@ Collapse collapseColumn(double bulkModulus, double lateStageTime, double lateSou
                         double* stepRatio = nullptr, double* stressRatio = nullptr,
                         int blockLevels = 0) {
   const double H = 0.2, W = 0.4, dx = H / 12.0, rho0 = 1500.0, g = 9.81;
-  const Material soil = granularSoil(rho0, bulkModulus), floor = rigidFloor(soil);
+  const Material soil = sphtest::granularSoil(rho0, bulkModulus), floor = rigidFloor(soil);
   SphParams par;
   par.materials = {soil, floor};
   par.gravity[2] = -g;
@@ -409,7 +393,7 @@ void printSlopeProfile(const SphSolver& solver, double dx, double B3) {
 std::vector<double> slopeVelocities(const SlopeCase& c, const std::vector<double>& times,
                                     int* lowestRow = nullptr) {
   const double H = 0.2, dx = H / c.nz, rho0 = 1500.0, g = 9.81, beta = c.betaDeg * M_PI / 180.0;
-  const Material soil = granularSoil(rho0, c.bulkModulus);
+  const Material soil = sphtest::granularSoil(rho0, c.bulkModulus);
   Material floor = rigidFloor(soil);
   if (c.floorCohesion >= 0.0)
     floor.cohesion = c.floorCohesion;
