@@ -7,11 +7,14 @@ Housen & Holsapple pi-scaling prediction, run times, conservation figures).
 
 The SCI impactor (2 kg of copper at 2 km/s) and target (regolith, friction angle 30 degrees) are
 the defaults. Every length follows from the run's pi-scaling diameter D and every time from
-sqrt(D/g) (craterkit.sci.scales). The default gravity, 1000 m/s^2 (D = 1.0 m), runs in minutes; at
-Ryugu's 1.5e-4 m/s^2 use a graded SPH target (--sph-coarsening; docs/validation.md gives the
-validated set-up and its cost). --dem-engine lammps runs the DEM stage on LAMMPS (docs/lammps.md).
+sqrt(D/g) (craterkit.sci.scales). The default gravity, 1000 m/s^2 (D = 1.0 m), runs in minutes.
+At Ryugu's 1.5e-4 m/s^2 the example takes the validated set-up of slow.sci_ryugu_run (a graded
+SPH target, hand-off at 29.5 s, 30,000 RCP grains: craterkit.sci.RYUGU_PRESET), each option
+unless given; docs/validation.md gives its figures and cost. --dem-engine lammps runs the DEM
+stage on LAMMPS (docs/lammps.md).
 
     scripts/pvbatch examples/sci_crater.py --help
+    scripts/pvbatch examples/sci_crater.py --gravity 1.5e-4        # the SCI crater as validated
     scripts/pvbatch examples/sci_crater.py --dem-engine lammps --lammps-ranks 2
 """
 
@@ -108,7 +111,13 @@ def parse_args(argv):
     g.add_argument("--resume", action="store_true", help="continue from the checkpoints: the SPH stage (or its saved hand-off state) and the DEM stage")
     p.add_argument("--output-dir", default="results/sci_crater")
     p.add_argument("--width", type=int, default=900, help="width of each picture panel in pixels")
+    p.add_argument("--no-preset", action="store_true",
+                   help="at Ryugu's gravity, keep these defaults instead of the validated set-up "
+                        f"(the preset: {' '.join(sci.RYUGU_PRESET)}, each unless given)")
     args = p.parse_args(argv)
+    args.preset = []
+    if args.gravity == sci.RYUGU_GRAVITY and not args.no_preset:
+        args.preset = apply_preset(p, argv, args, sci.RYUGU_PRESET)
     for name in ("impactor_mass", "impact_speed", "gravity"):
         value = getattr(args, name)
         if not (value > 0.0 and math.isfinite(value)):
@@ -137,8 +146,37 @@ def parse_args(argv):
     return args
 
 
+def given_options(p, argv):
+    """The options argv sets itself, as {dest: value}: argv parsed again with no defaults."""
+    defaults = {a: a.default for a in p._actions}
+    for a in defaults:
+        a.default = argparse.SUPPRESS
+    try:
+        return vars(p.parse_args(argv))
+    finally:
+        for a, value in defaults.items():
+            a.default = value
+
+
+def apply_preset(p, argv, args, preset):
+    """Sets each option of preset (command-line words) that argv does not set; a hand-off
+    fraction the user gives keeps its meaning (the preset's hand-off time would override it).
+    Returns the preset's words that were applied."""
+    given = given_options(p, argv)
+    applied = []
+    for dest, value in given_options(p, preset).items():
+        if dest in given or (dest == "handoff_time" and "handoff_fraction" in given):
+            continue
+        setattr(args, dest, value)
+        applied += ["--" + dest.replace("_", "-"), str(value)]
+    return applied
+
+
 def main(argv):
     args = parse_args(argv)
+    if args.preset:
+        sci.say("Ryugu's gravity: the validated set-up of slow.sci_ryugu_run (docs/validation.md), "
+                f"{' '.join(args.preset)}; --no-preset keeps the general defaults")
     out = args.output_dir
     sph_to_run = not (args.sph_state or (args.resume and os.path.isfile(os.path.join(out, "sph_handoff.vtp"))))
     if args.dem_engine == "lammps" and sph_to_run:  # lmp, mpirun and the deck's styles, before the SPH stage

@@ -61,6 +61,9 @@ EJECTA_LIMIT_RATIO = 1.0 / math.sqrt(RYUGU_GRAVITY * SCI_CRATER["diameter"])
 RYUGU_VALIDATION_STAGE = ["--sph-coarsening", "10", "--sph-domain-radius", "29", "--sph-target-radius", "11.6",
                           "--late-stage-sound-speed", "0.46637", "--sph-block-steps", "7",
                           "--handoff-time", "29.5"]
+# examples/sci_crater.py at Ryugu's gravity: the validation's SPH stage and its bed (slow.sci_ryugu_run),
+# each option unless the user gives it.
+RYUGU_PRESET = RYUGU_VALIDATION_STAGE + ["--particles", "30000", "--packing", "RCP"]
 # The same hand-off in units of sqrt(D_pi / g), for the runs at other gravities.
 VALIDATION_HANDOFF_FRACTION = 0.095
 

@@ -7,7 +7,8 @@ with the values computed by hand in docs/physics.md section 4.2, the impactor's 
 inside the SPH target, and the pictures and report exist; then that a run resumed after its
 first frame continues from the checkpoint, and that a bad --sph-coarsening, a negative --cohesion,
 --rolling-friction or --late-stage-initial-sound-speed, a zero --handoff-fraction and a zero
---late-stage-sound-speed-exponent are refused."""
+--late-stage-sound-speed-exponent are refused; and that at Ryugu's gravity the example takes the
+validated set-up, option by option, unless told not to."""
 
 import json
 import os
@@ -128,4 +129,26 @@ code = run_example(source_dir, "sci_crater", ["--late-stage-sound-speed-exponent
 t.check(code == 2, f"--late-stage-sound-speed-exponent 0: exit code {code}, expected the usage error 2")
 code = run_example(source_dir, "sci_crater", ["--late-stage-initial-sound-speed", "-5", "--output-dir", out + "_bad"])
 t.check(code == 2, f"--late-stage-initial-sound-speed -5: exit code {code}, expected the usage error 2")
+# The Ryugu preset: at Ryugu's gravity the example takes the validated set-up (sci.RYUGU_PRESET)
+# option by option, the user's own options win, and the other gravities keep the general defaults.
+import importlib.util  # noqa: E402
+
+from craterkit import sci  # noqa: E402
+
+spec = importlib.util.spec_from_file_location("sci_crater_example", os.path.join(source_dir, "examples", "sci_crater.py"))
+example = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(example)
+ryugu = example.parse_args(["--gravity", str(sci.RYUGU_GRAVITY)])
+t.check((ryugu.sph_coarsening, ryugu.handoff_time, ryugu.particles, ryugu.sph_block_steps) == (10.0, 29.5, 30000, 7),
+        f"Ryugu preset: coarsening {ryugu.sph_coarsening}, hand-off {ryugu.handoff_time} s, {ryugu.particles} grains, "
+        f"block steps {ryugu.sph_block_steps}; expected the validation's 10, 29.5 s, 30000, 7")
+own = example.parse_args(["--gravity", "1.5e-4", "--sph-coarsening", "8", "--handoff-fraction", "0.2"])
+t.check((own.sph_coarsening, own.handoff_time, own.handoff_fraction, own.particles) == (8.0, 0.0, 0.2, 30000),
+        f"the user's --sph-coarsening 8 --handoff-fraction 0.2 at Ryugu: coarsening {own.sph_coarsening}, hand-off "
+        f"time {own.handoff_time}, fraction {own.handoff_fraction}, {own.particles} grains")
+for words in (["--gravity", "1.5e-4", "--no-preset"], ["--gravity", "1000"]):
+    plain = example.parse_args(words)
+    t.check(not plain.preset and plain.sph_coarsening == 1.0 and plain.particles == 6000,
+            f"{' '.join(words)}: preset {plain.preset}, coarsening {plain.sph_coarsening}, {plain.particles} grains; "
+            "expected the general defaults")
 sys.exit(t.close())
