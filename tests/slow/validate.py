@@ -161,8 +161,8 @@ SCI = sci.SCI_CRATER
 
 def sci_ryugu_run(args):
     """The Ryugu run that the SCI cases share: the coarsening-10 SPH target handed off at 29.5 s
-    to 30,000 RCP grains (1,957 s on two cores shared with other runs, recorded 2026-12-07: SPH
-    562 s, bed 122 s, DEM 1,254 s; docs/validation.md). It passes when the run completed and wrote
+    to 30,000 RCP grains (552 s on two quiet cores, recorded 2026-12-07: SPH 173 s, bed 37 s, DEM
+    327 s; docs/validation.md). It passes when the run completed and wrote
     its report (ctest's fixture for sci_crater_ryugu, rcp_vs_hcp, pi_scaling and the convergence
     cases, which then run whatever the crater measures)."""
     started = time.time()
@@ -237,6 +237,26 @@ def sci_convergence_sph(args):
     stage[stage.index("--sph-coarsening") + 1] = "8"
     fine = sci_run(args, "sci_ryugu_c8_h29.5", 1.5e-4, [30000], ["RCP"], stage)[("RCP", 30000)]
     return convergence_rows("sci_convergence_sph", coarse, fine, "SPH coarsening 10 -> 8")
+
+
+def sci_convergence_impactor(args):
+    """Convergence in the impactor: the Ryugu case with 2 SPH particles across the impactor (its
+    own run) and with 4, the graded target's outer spacing kept (coarsening 10 -> 20). The cavity
+    carved into the bed at the hand-off and the crater after the DEM stage must each keep D and
+    depth within 10 % (relative to the finer run). 8 across is not run: its first millisecond
+    alone would take hours on two cores (docs/validation.md)."""
+    coarse = ryugu_report(args, RYUGU_DIR)
+    stage = list(RYUGU_STAGE)
+    stage[stage.index("--sph-coarsening") + 1] = "20"
+    fine = sci_run(args, "sci_ryugu_r4_c20_h29.5", 1.5e-4, [30000], ["RCP"],
+                   stage + ["--sph-resolution", "4"])[("RCP", 30000)]
+
+    def cavity(report):
+        carved = report.get("crater_at_handoff") or {}
+        return {"crater_diameter_m": carved.get("diameter_m"), "crater_depth_m": carved.get("depth_m")}
+    what = "2 -> 4 particles across the impactor"
+    return (convergence_rows("sci_convergence_impactor", cavity(coarse), cavity(fine), what + ", at the hand-off")
+            + convergence_rows("sci_convergence_impactor", coarse, fine, what))
 
 
 def rcp_vs_hcp(args):
@@ -397,7 +417,7 @@ CASES = {"angle_of_repose": angle_of_repose, "column_collapse": column_collapse,
          "sph_column_flank": sph_column_flank, "sci_crater_ryugu": sci_crater_ryugu, "sci_ryugu_run": sci_ryugu_run,
          "rcp_vs_hcp": rcp_vs_hcp, "pi_scaling": pi_scaling, "hvi_debris_cloud": hvi_debris_cloud,
          "hvi_front_velocity": hvi_front_velocity, "sci_convergence_bed": sci_convergence_bed,
-         "sci_convergence_sph": sci_convergence_sph}
+         "sci_convergence_sph": sci_convergence_sph, "sci_convergence_impactor": sci_convergence_impactor}
 
 # --- the summary table ----------------------------------------------------------------------
 
