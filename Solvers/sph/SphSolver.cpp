@@ -470,11 +470,11 @@ void SphSolver::enterLateStage() {
   if (par_.lateStageStopMaterial >= 0)
     stopInFlow(s_, par_.lateStageStopMaterial, par_.materials);
   late_ = true;
-  switchState(lateStageSoundSpeedAt(par_, par_.lateStageTime));
-  stableStep_ = limitStep(s_, k1_, lastSignal_);
+  const double signal = switchState(lateStageSoundSpeedAt(par_, par_.lateStageTime));
+  stableStep_ = limitStep(s_, k1_, signal);
 }
 
-void SphSolver::switchState(double c) {
+double SphSolver::switchState(double c) {
   const std::vector<double> earlyK = earlyBulkModuli(par_.materials);
   const std::vector<double> scale = switchMaterials(c);
   keepOverburden(s_, par_, earlyK);
@@ -484,18 +484,18 @@ void SphSolver::switchState(double c) {
       s_.S[6 * i + k] *= f;
   }
   settle(s_, p_, c_);
-  lastSignal_ = computeRates(s_, p_, c_, k1_);
+  return computeRates(s_, p_, c_, k1_);
 }
 
 void SphSolver::followSchedule() {
   const double c = lateStageSoundSpeedAt(par_, time_);
   if (!(c < lateC_))
     return;
-  switchState(c);
+  const double signal = switchState(c);
   // One step for all: the new law's limit. Block steps keep the cycle they asked for: the
   // particles' own limits only grow as c falls, and each grows its step by at most 2 per cycle.
   if (par_.blockStepLevels == 0)
-    stableStep_ = limitStep(s_, k1_, lastSignal_);
+    stableStep_ = limitStep(s_, k1_, signal);
 }
 
 double SphSolver::step(double dt) {

@@ -121,8 +121,9 @@ private:
   // To the late-stage law of sound speed c; returns each material's G'/G.
   std::vector<double> switchMaterials(double c);
   // switchMaterials(c) with the state carried over (the lithostatic pressure kept, the
-  // deviatoric stress scaled), then the state's pressures and rates (k1_).
-  void switchState(double c);
+  // deviatoric stress scaled), then the state's pressures and rates (k1_); returns
+  // computeRates' largest signal speed.
+  double switchState(double c);
   // After a step in the late stage: the next stage of a falling sound speed, when it is due
   // (sph/LateStageSchedule.h).
   void followSchedule();
@@ -212,7 +213,6 @@ private:
   bool late_ = false;
   double lateC_ = 0.0;      // the late-stage law's sound speed now (0: before the switch)
   double earlyAlpha_ = 0.0; // SphParams::alpha as given (the late stage scales it)
-  double lastSignal_ = 0.0; // computeRates' answer in switchState
 };
 
 } // namespace craterkit

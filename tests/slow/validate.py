@@ -200,6 +200,13 @@ def ryugu_report(args, name, packing="RCP", particles=30000):
     return fresh_reports(summary, 0.0, [(packing, particles)])[(packing, particles)]
 
 
+def ryugu_stage(coarsening):
+    """The Ryugu cases' stage on another graded SPH target (sci_crater.py's --sph-coarsening)."""
+    stage = list(RYUGU_STAGE)
+    stage[stage.index("--sph-coarsening") + 1] = str(coarsening)
+    return stage
+
+
 def convergence_rows(case, coarse, fine, what):
     """D and depth of the finer run against the coarser: the change relative to the finer run's
     figure, within 10 % to pass (a validation holds only where the finer pair agree)."""
@@ -233,9 +240,7 @@ def sci_convergence_sph(args):
     less than 10 %. (Handed off at 196 s, coarsening 10 -> 8 changed the depth by more than the
     finer's depth itself: docs/validation.md.)"""
     coarse = ryugu_report(args, RYUGU_DIR)
-    stage = list(RYUGU_STAGE)
-    stage[stage.index("--sph-coarsening") + 1] = "8"
-    fine = sci_run(args, "sci_ryugu_c8_h29.5", 1.5e-4, [30000], ["RCP"], stage)[("RCP", 30000)]
+    fine = sci_run(args, "sci_ryugu_c8_h29.5", 1.5e-4, [30000], ["RCP"], ryugu_stage(8))[("RCP", 30000)]
     return convergence_rows("sci_convergence_sph", coarse, fine, "SPH coarsening 10 -> 8")
 
 
@@ -247,10 +252,8 @@ def sci_convergence_impactor(args):
     took 31 minutes and its late stage had not reached 2.95 s half an hour later (recorded
     2026-12-07, docs/validation_history.md)."""
     coarse = ryugu_report(args, RYUGU_DIR)
-    stage = list(RYUGU_STAGE)
-    stage[stage.index("--sph-coarsening") + 1] = "20"
     fine = sci_run(args, "sci_ryugu_r4_c20_h29.5", 1.5e-4, [30000], ["RCP"],
-                   stage + ["--sph-resolution", "4"])[("RCP", 30000)]
+                   ryugu_stage(20) + ["--sph-resolution", "4"])[("RCP", 30000)]
 
     def cavity(report):
         carved = report.get("crater_at_handoff") or {}
