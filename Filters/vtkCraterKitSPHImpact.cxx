@@ -98,6 +98,7 @@ void vtkCraterKitSPHImpact::BuildRun() {
   p.lateStageSoundSpeed = this->LateStageSoundSpeed;
   p.lateStageInitialSoundSpeed = this->LateStageInitialSoundSpeed;
   p.lateStageSoundSpeedExponent = this->LateStageSoundSpeedExponent;
+  p.lateStagePoissonRatio = this->LateStagePoissonRatio;
   p.blockStepLevels = this->BlockStepLevels;
   this->Spacing = problem.spacing;
   this->ContainerParticles = problem.containerParticles;
@@ -170,7 +171,8 @@ void vtkCraterKitSPHImpact::PrintSelf(ostream& os, vtkIndent indent) {
       "StopImpactorAtLateStage", this->StopImpactorAtLateStage, "DomainRadius", this->DomainRadius,
       "LateStageSoundSpeed", this->LateStageSoundSpeed, "LateStageInitialSoundSpeed",
       this->LateStageInitialSoundSpeed, "LateStageSoundSpeedExponent",
-      this->LateStageSoundSpeedExponent, "BlockStepLevels", this->BlockStepLevels, "CheckpointFile",
-      this->CheckpointFile, "CheckpointInterval", this->CheckpointInterval, "ResumeFromCheckpoint",
+      this->LateStageSoundSpeedExponent, "LateStagePoissonRatio", this->LateStagePoissonRatio,
+      "BlockStepLevels", this->BlockStepLevels, "CheckpointFile", this->CheckpointFile,
+      "CheckpointInterval", this->CheckpointInterval, "ResumeFromCheckpoint",
       this->ResumeFromCheckpoint, "KeptStates", this->KeptStates);
 }

@@ -103,6 +103,8 @@ public:
   vtkGetMacro(LateStageInitialSoundSpeed, double);
   vtkSetMacro(LateStageSoundSpeedExponent, double);
   vtkGetMacro(LateStageSoundSpeedExponent, double);
+  vtkSetMacro(LateStagePoissonRatio, double);
+  vtkGetMacro(LateStagePoissonRatio, double);
   vtkSetMacro(BlockStepLevels, int);
   vtkGetMacro(BlockStepLevels, int);
   vtkSetStdStringFromCharMacro(CheckpointFile);
@@ -159,6 +161,7 @@ private:
   double LateStageSoundSpeed = 100.0;
   double LateStageInitialSoundSpeed = 0.0;
   double LateStageSoundSpeedExponent = 0.6;
+  double LateStagePoissonRatio = -1.0;
   int BlockStepLevels = 0;
   std::string CheckpointFile;
   int CheckpointInterval = 0;

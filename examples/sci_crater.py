@@ -76,6 +76,10 @@ def parse_args(argv):
                         "(SPHImpact's LateStageInitialSoundSpeed); 0: one switch")
     g.add_argument("--late-stage-sound-speed-exponent", type=float, default=0.6,
                    help="q of the falling late-stage sound speed (SPHImpact's LateStageSoundSpeedExponent)")
+    g.add_argument("--late-stage-poisson-ratio", type=float, default=-1.0,
+                   help="the Poisson ratio the target takes at the late-stage switch (SPHImpact's "
+                        "LateStagePoissonRatio); negative: its own, which leaves the regolith almost no "
+                        "shear modulus")
     g.add_argument("--sph-domain-radius", type=float, default=0.0,
                    help="m; SPH particles farther from the impact point fly ballistically (SPHImpact's "
                         "DomainRadius); 0: no limit")
@@ -127,6 +131,8 @@ def parse_args(argv):
         value = getattr(args, name)
         if not (value >= 0.0 and math.isfinite(value)):
             p.error(f"--{name.replace('_', '-')} must not be negative (got {value})")
+    if not (args.late_stage_poisson_ratio < 0.5 and math.isfinite(args.late_stage_poisson_ratio)):
+        p.error(f"--late-stage-poisson-ratio must be below 0.5 (got {args.late_stage_poisson_ratio})")
     if not (0.0 < args.late_stage_sound_speed_exponent <= 2.0):
         p.error(f"--late-stage-sound-speed-exponent must be in (0, 2] (got {args.late_stage_sound_speed_exponent})")
     if not (0.0 < args.handoff_fraction <= 10.0):

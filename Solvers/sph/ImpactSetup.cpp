@@ -322,6 +322,7 @@ std::vector<NamedValue> impactFields(const SphSolver& solver, const SphImpactSet
           text("TargetMaterial", setup.targetMaterial),
           number("FrictionAngle", setup.frictionAngle),
           number("LateStageSoundSpeed", solver.lateStageSoundSpeed()),
+          number("LateStagePoissonRatio", solver.params().lateStagePoissonRatio),
           number("StopImpactorAtLateStage",
                  solver.params().lateStageStopMaterial == kImpactorMaterial ? 1.0 : 0.0)};
 }

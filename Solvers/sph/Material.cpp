@@ -23,14 +23,16 @@ std::string trim(const std::string& s) {
 }
 } // namespace
 
-double Material::switchToLateStage(double c) {
+double Material::switchToLateStage(double c, double poissonRatio) {
   if (!eos.hasLateStage())
     return 1.0; // gases keep their law
   const double Kold = lawBulkModulus();
   const double K = eos.switchToLateStage(c);
   double scale = 1.0;
   if (shearModulus > 0.0) {
-    const double G = shearModulus, nu = (3.0 * Kold - 2.0 * G) / (2.0 * (3.0 * Kold + G));
+    const double G = shearModulus;
+    const double nu =
+        poissonRatio >= 0.0 ? poissonRatio : (3.0 * Kold - 2.0 * G) / (2.0 * (3.0 * Kold + G));
     const double Gnew = 3.0 * K * (1.0 - 2.0 * nu) / (2.0 * (1.0 + nu));
     scale = Gnew / G;
     shearModulus = Gnew;

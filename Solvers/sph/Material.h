@@ -33,10 +33,10 @@ struct Material {
     return bulkModulus > 0.0 ? bulkModulus : eos.referenceBulkModulus();
   }
   // The late stage (sph/Eos.h): a material whose law has a late-stage form takes the linear law
-  // of sound speed c and keeps its Poisson ratio, so G falls with K. Returns the factor by which
-  // G fell (1: unchanged), by which each particle's deviatoric stress is scaled: the elastic
-  // strain is unchanged.
-  double switchToLateStage(double c);
+  // of sound speed c and keeps its Poisson ratio, so G falls with K, or takes the Poisson ratio
+  // poissonRatio if that is not negative. Returns the factor by which G changed (1: unchanged),
+  // by which each particle's deviatoric stress is scaled: the elastic strain is unchanged.
+  double switchToLateStage(double c, double poissonRatio = -1.0);
 };
 
 // A material with this equation of state and no strength or porosity (a fluid).

@@ -55,6 +55,9 @@ void SphParams::validate() const {
   if (lateStageInitialSoundSpeed > lateStageSoundSpeed && lateStageTime == 0.0)
     throw InputError("SPH: a late-stage sound speed that falls with time needs a late-stage "
                      "time after 0");
+  if (!(lateStagePoissonRatio < 0.5) || !std::isfinite(lateStagePoissonRatio))
+    throw InputError("SPH: the late-stage Poisson ratio must be below 0.5 (negative: each "
+                     "material keeps its own)");
   if (lateStageStopMaterial < -1 || lateStageStopMaterial >= static_cast<int>(materials.size()))
     throw InputError("SPH: the material stopped at the late-stage switch must be one of the " +
                      std::to_string(materials.size()) + " materials (-1: none)");

@@ -67,6 +67,12 @@ struct SphParams {
   // switch, straight to lateStageSoundSpeed).
   double lateStageInitialSoundSpeed = 0.0; // m/s
   double lateStageSoundSpeedExponent = 0.6;
+  // The Poisson ratio every material with strength takes at the switch, in [0, 0.5): G = 3 K
+  // (1 - 2 nu) / (2 (1 + nu)) of the late-stage K. Negative: each keeps its own (the rule
+  // above). A porous material whose shear modulus is the bulk's but whose K is the matrix's
+  // (regolith.cfg: nu 0.4996) keeps almost none: G 0.44 Pa at c = 0.47 m/s, shear waves at
+  // 2 cm/s, too soft for its yield stress to act on the late flow (docs/physics.md §2.8).
+  double lateStagePoissonRatio = -1.0;
   // The target's weight through the switch (sph/Overburden.h): the bulk density ρ_o of the
   // overburden (0: none, the whole pressure falls with the bulk modulus) and the height of the
   // free surface along −gravity (the plane x·ĝ = −overburdenSurface, ĝ the unit gravity). Under

@@ -458,7 +458,7 @@ double SphSolver::computeRates(const SphState& s, const std::vector<double>& p,
 std::vector<double> SphSolver::switchMaterials(double c) {
   std::vector<double> scale(par_.materials.size(), 1.0);
   for (std::size_t m = 0; m < par_.materials.size(); ++m)
-    scale[m] = par_.materials[m].switchToLateStage(c);
+    scale[m] = par_.materials[m].switchToLateStage(c, par_.lateStagePoissonRatio);
   lateC_ = c;
   // The artificial viscosity's linear term goes as α c h: above the final c it would make the
   // flow's numerical viscosity a choice of the schedule, so α keeps the final c's α c.

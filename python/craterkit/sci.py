@@ -164,6 +164,7 @@ def sph_stage(simple, args, sc, output_dir):
                            LateStageSoundSpeed=sc.late_stage_sound_speed,
                            LateStageInitialSoundSpeed=args.late_stage_initial_sound_speed,
                            LateStageSoundSpeedExponent=args.late_stage_sound_speed_exponent,
+                           LateStagePoissonRatio=args.late_stage_poisson_ratio,
                            BlockStepLevels=args.sph_block_steps, DomainRadius=args.sph_domain_radius, EndTime=t, OutputInterval=t,
                            CheckpointFile=checkpoint, CheckpointInterval=200, ResumeFromCheckpoint=1 if resume else 0)
     say(f"[1/5] SPH impact to {t:.2e} s" + (f" (resumed from {checkpoint})" if resume else ""))
@@ -200,7 +201,9 @@ def saved_sph_state(simple, args, sc, path):
                              ("TargetRadius", sc.sph_target_radius, "SPH target radius"),
                              ("TargetCoarsening", args.sph_coarsening, "SPH target coarsening"),
                              ("StopImpactorAtLateStage", 1.0 if args.stop_impactor else 0.0,
-                              "impactor stopped at the late-stage switch (--stop-impactor)")):
+                              "impactor stopped at the late-stage switch (--stop-impactor)"),
+                             ("LateStagePoissonRatio", args.late_stage_poisson_ratio,
+                              "late-stage Poisson ratio (--late-stage-poisson-ratio)")):
         theirs = field_value(data, name)
         if theirs is not None and abs(theirs - ours) > 1e-6 * max(abs(ours), 1e-12):
             sys.exit(f"--sph-state {path}: its {what} is {theirs:g}, this run's {ours:g}")
@@ -499,6 +502,7 @@ def report_entries(args, sc, run):
         "late_stage": {"time_s": args.late_stage_time, "sound_speed_m_s": sc.late_stage_sound_speed,
                        "initial_sound_speed_m_s": args.late_stage_initial_sound_speed,
                        "sound_speed_exponent": args.late_stage_sound_speed_exponent,
+                       "poisson_ratio": args.late_stage_poisson_ratio,
                        "sound_speed_at_handoff_m_s": field_value(run.sph_data, "LateStageSoundSpeed")},
         "impactor_depth_at_handoff_m": run.impactor_depth,
         "ejecta_speed_limit_m_s": round(sc.ejecta_limit, 4),

@@ -6,8 +6,8 @@ account for the rest, the DEM bed lost energy as it settled, the pi-scaling pred
 with the values computed by hand in docs/physics.md section 4.2, the impactor's reported depth lies
 inside the SPH target, and the pictures and report exist; then that a run resumed after its
 first frame continues from the checkpoint, and that a bad --sph-coarsening, a negative --cohesion,
---rolling-friction or --late-stage-initial-sound-speed, a zero --handoff-fraction and a zero
---late-stage-sound-speed-exponent are refused; and that at Ryugu's gravity the example takes the
+--rolling-friction or --late-stage-initial-sound-speed, a zero --handoff-fraction, a zero
+--late-stage-sound-speed-exponent and a --late-stage-poisson-ratio of 0.5 are refused; and that at Ryugu's gravity the example takes the
 validated set-up, option by option, unless told not to."""
 
 import json
@@ -129,6 +129,8 @@ code = run_example(source_dir, "sci_crater", ["--late-stage-sound-speed-exponent
 t.check(code == 2, f"--late-stage-sound-speed-exponent 0: exit code {code}, expected the usage error 2")
 code = run_example(source_dir, "sci_crater", ["--late-stage-initial-sound-speed", "-5", "--output-dir", out + "_bad"])
 t.check(code == 2, f"--late-stage-initial-sound-speed -5: exit code {code}, expected the usage error 2")
+code = run_example(source_dir, "sci_crater", ["--late-stage-poisson-ratio", "0.5", "--output-dir", out + "_bad"])
+t.check(code == 2, f"--late-stage-poisson-ratio 0.5: exit code {code}, expected the usage error 2")
 # The Ryugu preset: at Ryugu's gravity the example takes the validated set-up (sci.RYUGU_PRESET)
 # option by option, the user's own options win, and the other gravities keep the general defaults.
 import importlib.util  # noqa: E402

@@ -1,6 +1,6 @@
 // The late-stage sound speed that falls with the crater's flow (sph/LateStageSchedule.h): its
 // power law, the stage a restored solver takes up, the artificial viscosity it keeps, bad
-// schedules. The staged layer at rest is in SphOverburdenTest.cpp.
+// schedules; the late-stage Poisson ratio. The staged layer at rest is in SphOverburdenTest.cpp.
 #include "SphColumns.h"
 #include "sph/LateStageSchedule.h"
 #include "sph/SphSolver.h"
@@ -130,4 +130,57 @@ TEST(SphLateStage, BadScheduleIsRefused) {
   EXPECT_NE(message(10.0, 0.6, 0.0).find("time after 0"), std::string::npos);
   EXPECT_EQ(message(10.0, 0.6, 1e-3), "");
   EXPECT_EQ(message(0.0, 0.0, 1e-3), ""); // one switch: the exponent is not read
+}
+
+// The shear modulus at the switch. The SCI regolith (data/materials/regolith.cfg: a basalt
+// matrix's K = A = 26.7 GPa with the porous bulk's G = 20 MPa, so nu = 0.49963) keeping its
+// Poisson ratio at c = 0.46637 m/s keeps G = 0.44 Pa of K' = 2700 c^2 = 587 Pa: shear waves at
+// 2 cm/s, and a Drucker-Prager yield stress of 0.4 Pa (4 m deep at Ryugu's gravity, 30 deg)
+// needs a shear strain of about 0.5 to reach. LateStagePoissonRatio 0.25 gives it G = 0.6 K' =
+// 352 Pa. In a solver, the switch applies the ratio.
+TEST(SphLateStage, PoissonRatioSetsTheLateShearModulus) {
+  Material regolith;
+  regolith.eos.model = EquationOfState::Model::Tillotson;
+  regolith.eos.tillotson.rho0 = 2700.0;
+  regolith.bulkModulus = 26.7e9, regolith.shearModulus = 2e7;
+  regolith.strength = Material::Strength::DruckerPrager;
+  Material kept = regolith, set = regolith;
+  const double c = 0.46637, K = 2700.0 * c * c;
+  const double keptScale = kept.switchToLateStage(c);
+  EXPECT_NEAR(kept.shearModulus, 0.44, 0.005);
+  EXPECT_NEAR(keptScale, kept.shearModulus / 2e7, 1e-15);
+  const double setScale = set.switchToLateStage(c, 0.25);
+  EXPECT_NEAR(set.bulkModulus, K, 1e-9 * K);
+  EXPECT_NEAR(set.shearModulus, 0.6 * K, 1e-9 * K);
+  EXPECT_NEAR(setScale, 0.6 * K / 2e7, 1e-15);
+
+  // In a solver: a soil column (G = 0.35 K, so nu = 0.3433) switched at 0.1 ms to c = 8 m/s,
+  // with nu 0.25 and with its own: G' = 3 K' (1 - 2 nu) / (2 (1 + nu)), K' = rho0 c^2.
+  for (const double nu : {0.25, -1.0}) {
+    SphParams par;
+    const Material soil = sphtest::granularSoil(1500.0, 4e6, 7.0);
+    Material floor = soil;
+    floor.name = "floor", floor.rigid = true;
+    par.materials = {soil, floor};
+    par.gravity[2] = -9.81;
+    par.lateStageTime = 1e-4, par.lateStageSoundSpeed = 8.0, par.lateStagePoissonRatio = nu;
+    SphSolver solver(sphtest::lithostaticColumn(par, 4, 10, 0.02, 1500.0, 9.81, 4e6, 7.0, 1.0),
+                     par);
+    solver.advanceTo(2e-4);
+    const double Kl = 1500.0 * 8.0 * 8.0, nuUsed = nu >= 0.0 ? nu : (3.0 - 0.7) / (2.0 * 3.35);
+    const double expected = 3.0 * Kl * (1.0 - 2.0 * nuUsed) / (2.0 * (1.0 + nuUsed));
+    EXPECT_NEAR(solver.params().materials[0].shearModulus, expected, 1e-9 * expected)
+        << "nu " << nu;
+  }
+
+  // Bad input: a ratio of 0.5 or more, or not a number, is refused, naming the property.
+  auto message = [](double nu) {
+    SphParams par;
+    par.lateStageTime = 1e-3, par.lateStageSoundSpeed = 1.0, par.lateStagePoissonRatio = nu;
+    return sphtest::refusal(par);
+  };
+  EXPECT_NE(message(0.5).find("Poisson ratio"), std::string::npos);
+  EXPECT_NE(message(NAN).find("Poisson ratio"), std::string::npos);
+  EXPECT_EQ(message(0.25), "");
+  EXPECT_EQ(message(-1.0), "");
 }
