@@ -7,8 +7,8 @@ with the values computed by hand in docs/physics.md section 4.2, the impactor's 
 inside the SPH target, and the pictures and report exist; then that a run resumed after its
 first frame continues from the checkpoint, and that a bad --sph-coarsening, a negative --cohesion,
 --rolling-friction or --late-stage-initial-sound-speed, a zero --handoff-fraction, a zero
---late-stage-sound-speed-exponent and a --late-stage-poisson-ratio of 0.5 are refused; and that at Ryugu's gravity the example takes the
-validated set-up, option by option, unless told not to."""
+--late-stage-sound-speed-exponent and a --late-stage-poisson-ratio of 0.5 are refused; and that
+at Ryugu's gravity the example takes the validated set-up, option by option, unless told not to."""
 
 import json
 import os

@@ -36,9 +36,11 @@ TEST(SphLateStage, SoundSpeedFollowsThePowerLawInQuarterOctaves) {
   EXPECT_EQ(lateStageSoundSpeedAt(par, 5.0), 0.5);
 }
 
-// A solver restored at a time in the schedule (a resumed checkpoint) takes the stage it was
-// written in: its law is the running solver's, then and after both have gone on.
-TEST(SphLateStage, RestoredSolverTakesUpTheStageOfItsTime) {
+namespace {
+
+// A granular soil (G = 0.35 K) on a rigid floor under 9.81 m/s², switched at 0.1 ms to the late
+// law of c = 8 m/s, and its lithostatic column of 4 x 4 x 10 particles.
+SphParams soilOnFloor() {
   SphParams par;
   const Material soil = sphtest::granularSoil(1500.0, 4e6, 7.0);
   Material floor = soil;
@@ -46,8 +48,20 @@ TEST(SphLateStage, RestoredSolverTakesUpTheStageOfItsTime) {
   par.materials = {soil, floor};
   par.gravity[2] = -9.81;
   par.lateStageTime = 1e-4, par.lateStageSoundSpeed = 8.0;
+  return par;
+}
+SphState soilColumn(SphParams& par) {
+  return sphtest::lithostaticColumn(par, 4, 10, 0.02, 1500.0, 9.81, 4e6, 7.0, 1.0);
+}
+
+} // namespace
+
+// A solver restored at a time in the schedule (a resumed checkpoint) takes the stage it was
+// written in: its law is the running solver's, then and after both have gone on.
+TEST(SphLateStage, RestoredSolverTakesUpTheStageOfItsTime) {
+  SphParams par = soilOnFloor();
   par.lateStageInitialSoundSpeed = 32.0, par.lateStageSoundSpeedExponent = 0.25;
-  const SphState s = sphtest::lithostaticColumn(par, 4, 10, 0.02, 1500.0, 9.81, 4e6, 7.0, 1.0);
+  const SphState s = soilColumn(par);
   SphSolver running(s, par);
   running.advanceTo(2e-3);
   const double mid = running.lateStageSoundSpeed();
@@ -154,18 +168,12 @@ TEST(SphLateStage, PoissonRatioSetsTheLateShearModulus) {
   EXPECT_NEAR(set.shearModulus, 0.6 * K, 1e-9 * K);
   EXPECT_NEAR(setScale, 0.6 * K / 2e7, 1e-15);
 
-  // In a solver: a soil column (G = 0.35 K, so nu = 0.3433) switched at 0.1 ms to c = 8 m/s,
-  // with nu 0.25 and with its own: G' = 3 K' (1 - 2 nu) / (2 (1 + nu)), K' = rho0 c^2.
+  // In a solver: the soil column (G = 0.35 K, so nu = 0.3433) of soilOnFloor, with nu 0.25 and
+  // with its own: G' = 3 K' (1 - 2 nu) / (2 (1 + nu)), K' = rho0 c^2.
   for (const double nu : {0.25, -1.0}) {
-    SphParams par;
-    const Material soil = sphtest::granularSoil(1500.0, 4e6, 7.0);
-    Material floor = soil;
-    floor.name = "floor", floor.rigid = true;
-    par.materials = {soil, floor};
-    par.gravity[2] = -9.81;
-    par.lateStageTime = 1e-4, par.lateStageSoundSpeed = 8.0, par.lateStagePoissonRatio = nu;
-    SphSolver solver(sphtest::lithostaticColumn(par, 4, 10, 0.02, 1500.0, 9.81, 4e6, 7.0, 1.0),
-                     par);
+    SphParams par = soilOnFloor();
+    par.lateStagePoissonRatio = nu;
+    SphSolver solver(soilColumn(par), par);
     solver.advanceTo(2e-4);
     const double Kl = 1500.0 * 8.0 * 8.0, nuUsed = nu >= 0.0 ? nu : (3.0 - 0.7) / (2.0 * 3.35);
     const double expected = 3.0 * Kl * (1.0 - 2.0 * nuUsed) / (2.0 * (1.0 + nuUsed));
